@@ -1,0 +1,278 @@
+#include "Pendular.hpp"
+
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+namespace yade {
+
+YADE_PLUGIN((PendularMat)(PendularPhys)(Ip2_PendularMat_PendularMat_PendularPhys)(Law2_ScGeom_PendularPhys_Bridge));
+
+namespace {
+
+	[[noreturn]] void badValue(const std::string& cls, const char* name, Real value, const char* range, const char* unit)
+	{
+		std::ostringstream msg;
+		msg.precision(10);
+		msg << cls << "." << name << " = " << value << " " << unit << " is outside the allowed range " << range;
+		throw std::invalid_argument(msg.str());
+	}
+	bool isSet(Real x) { return !math::isnan(x); }
+
+	// Schwager & Poeschel 2007: a linear spring-dashpot contact that is not allowed to attract
+	// ends when the force reaches zero, before the overlap does; its restitution coefficient is
+	// en = exp(-x (pi - 2 atan x)) with x = beta/omega (damping rate over damped frequency), not
+	// the textbook exp(-pi x). Returns x for a given en in (exp(-2), 1] (the function is
+	// increasing in x and tends to 2 as x -> infinity).
+	Real dampingRatioFor(Real en)
+	{
+		const Real target = -math::log(en);
+		Real       lo = 0, hi = 1e8;
+		for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+			const Real x = (lo + hi) / 2;
+			(x * (Mathr::PI - 2 * math::atan(x)) < target ? lo : hi) = x;
+		}
+		return (lo + hi) / 2;
+	}
+	const Real minEn = math::exp(Real(-2));
+
+	capillary::BridgeSpec specOf(const PendularPhys& p)
+	{
+		capillary::BridgeSpec s;
+		s.R1             = p.R1;
+		s.R2             = p.R2;
+		s.volume         = p.Vb;
+		s.gamma          = p.gamma;
+		s.theta1         = p.theta1;
+		s.theta2         = p.theta2;
+		s.model          = capillary::model_from_name(p.model);
+		s.rupture        = capillary::rupture_from_name(p.rupture);
+		s.linear_fmax    = p.linearFmax;
+		s.linear_kc      = p.linearKc;
+		s.calibrate_from = capillary::model_from_name(p.calibrateFrom);
+		return s;
+	}
+
+	Real radiusOf(const shared_ptr<Body>& b)
+	{
+		const auto* sphere = dynamic_cast<const Sphere*>(b->shape.get());
+		return sphere ? sphere->radius : capillary::wall_radius;
+	}
+} // namespace
+
+PendularMat::Checked PendularMat::checked() const
+{
+	return { tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, wet, forceInContact, model, rupture, calibrateFrom };
+}
+
+void PendularMat::restore(const Checked& c)
+{
+	std::tie(tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc)
+	        = std::tie(c.tc, c.en, c.et, c.kn, c.cn, c.ks, c.cs, c.frictionAngle, c.Vb, c.gamma, c.theta, c.linearFmax, c.linearKc);
+	std::tie(wet, forceInContact, model, rupture, calibrateFrom) = std::tie(c.wet, c.forceInContact, c.model, c.rupture, c.calibrateFrom);
+}
+
+void PendularMat::postLoad(PendularMat&)
+{
+	try {
+		validate();
+	} catch (const std::invalid_argument&) {
+		restore(lastGood);
+		throw;
+	}
+	lastGood = checked();
+}
+
+void PendularMat::validate()
+{
+	const std::string c = "PendularMat";
+	if (isSet(tc) && !(tc > 0 && math::isfinite(tc))) badValue(c, "tc", tc, "(0, inf)", "s");
+	if (isSet(en) && !(en > minEn && en <= 1)) badValue(c, "en", en, "(exp(-2) = 0.1353, 1]", "-");
+	if (isSet(et) && !(et > 0 && et <= 1)) badValue(c, "et", et, "(0, 1]", "-");
+	if (isSet(kn) && !(kn > 0 && math::isfinite(kn))) badValue(c, "kn", kn, "(0, inf)", "N/m");
+	if (isSet(cn) && !(cn >= 0 && math::isfinite(cn))) badValue(c, "cn", cn, "[0, inf)", "N s/m");
+	if (isSet(ks) && !(ks >= 0 && math::isfinite(ks))) badValue(c, "ks", ks, "[0, inf)", "N/m");
+	if (isSet(cs) && !(cs >= 0 && math::isfinite(cs))) badValue(c, "cs", cs, "[0, inf)", "N s/m");
+	if (!(frictionAngle >= 0 && frictionAngle < Mathr::HALF_PI)) badValue(c, "frictionAngle", frictionAngle, "[0, pi/2)", "rad");
+	if (!(Vb >= 0 && math::isfinite(Vb))) badValue(c, "Vb", Vb, "[0, inf), and > 0 when wet", "m^3");
+	if (!(gamma >= 0 && math::isfinite(gamma))) badValue(c, "gamma", gamma, "[0, inf), and > 0 when wet", "N/m");
+	if (!(theta >= 0 && theta < Mathr::HALF_PI)) badValue(c, "theta", theta, "[0, pi/2) (radians)", "rad");
+	if (!(linearFmax >= 0 && math::isfinite(linearFmax))) badValue(c, "linearFmax", linearFmax, "[0, inf)", "N");
+	if (!(linearKc >= 0 && math::isfinite(linearKc))) badValue(c, "linearKc", linearKc, "[0, inf)", "N/m");
+	try {
+		modelId     = capillary::model_from_name(model);
+		ruptureId   = capillary::rupture_from_name(rupture);
+		calibrateId = capillary::model_from_name(calibrateFrom);
+	} catch (const std::invalid_argument& e) {
+		throw std::invalid_argument(c + "." + e.what());
+	}
+	if (calibrateId == capillary::Model::linear_irreversible)
+		throw std::invalid_argument(c + ".calibrateFrom = 'linear_irreversible' is not allowed; allowed: any other model");
+	if (wet && !(Vb > 0)) badValue(c, "Vb", Vb, "(0, inf) when wet=True (set Vb before wet)", "m^3");
+	if (wet && !(gamma > 0)) badValue(c, "gamma", gamma, "(0, inf) when wet=True (set gamma before wet)", "N/m");
+	if (isSet(en)) dampingRatioN = dampingRatioFor(en);
+}
+
+void PendularPhys::buildBridge()
+{
+	bridge  = capillary::make_bridge(specOf(*this));
+	R       = bridge.R;
+	sCrit   = bridge.rupture;
+	force0  = bridge.force0;
+}
+
+void PendularPhys::postLoad(PendularPhys&)
+{
+	if (wet && !model.empty()) buildBridge(); // after O.load: the cached invariants are not serialized
+}
+
+void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
+{
+	if (I->phys) return;
+	const auto& m1 = static_cast<const PendularMat&>(*b1);
+	const auto& m2 = static_cast<const PendularMat&>(*b2);
+	auto        phys = shared_ptr<PendularPhys>(new PendularPhys());
+
+	const auto& body1 = Body::byId(I->getId1(), scene);
+	const auto& body2 = Body::byId(I->getId2(), scene);
+	// Effective mass: a body that does not move under forces acts as an infinitely heavy partner.
+	Real mass1 = body1->state->mass, mass2 = body2->state->mass;
+	const bool heavy1 = !body1->isDynamic() || mass1 <= 0, heavy2 = !body2->isDynamic() || mass2 <= 0;
+	Real       massR;
+	if (heavy1 && !heavy2) massR = mass2;
+	else if (heavy2 && !heavy1) massR = mass1;
+	else massR = (mass1 > 0 && mass2 > 0) ? mass1 * mass2 / (mass1 + mass2) : math::max(mass1, mass2);
+
+	const bool byTime = isSet(m1.tc) && isSet(m1.en) && isSet(m1.et) && isSet(m2.tc) && isSet(m2.en) && isSet(m2.et);
+	const bool byStiff = isSet(m1.kn) && isSet(m1.cn) && isSet(m1.ks) && isSet(m1.cs) && isSet(m2.kn) && isSet(m2.cn) && isSet(m2.ks)
+	        && isSet(m2.cs);
+	if (byTime == byStiff)
+		throw std::invalid_argument(
+		        "PendularMat: give either tc, en, et or kn, cn, ks, cs on both materials (materials " + std::to_string(m1.id) + " and "
+		        + std::to_string(m2.id) + ")");
+	if (byTime) {
+		const Real tc = (m1.tc + m2.tc) / 2, en = (m1.en + m2.en) / 2, et = (m1.et + m2.et) / 2;
+		if (!(massR > 0)) throw std::invalid_argument("PendularMat with tc, en, et: bodies need a positive mass");
+		const Real omega = Mathr::PI / tc;                                            // half period of the damped oscillation = tc
+		const Real x     = (m1.en == m2.en) ? m1.dampingRatioN : dampingRatioFor(en); // beta / omega
+		phys->kn         = massR * omega * omega * (1 + x * x);
+		phys->cn         = 2 * massR * omega * x;
+		// Tangential: YADE's ViscElMat rule (Pournin2001 with the factor 2/7 of a rolling sphere).
+		const Real xt = -math::log(et) / Mathr::PI;
+		phys->ks      = 2. / 7. * massR * omega * omega * (1 + xt * xt);
+		phys->cs      = 2. / 7. * 2 * massR * omega * xt;
+	} else {
+		auto series = [](Real a, Real b) { return (a > 0 && b > 0) ? a * b / (a + b) : 0; };
+		phys->kn    = series(m1.kn, m2.kn);
+		phys->cn    = series(m1.cn, m2.cn);
+		phys->ks    = series(m1.ks, m2.ks);
+		phys->cs    = series(m1.cs, m2.cs);
+	}
+	phys->tangensOfFrictionAngle = math::tan(math::min(m1.frictionAngle, m2.frictionAngle));
+
+	phys->wet = m1.wet && m2.wet;
+	if (phys->wet) {
+		auto mustMatch = [&](const char* name, const std::string& a, const std::string& b) {
+			if (a != b)
+				throw std::invalid_argument(
+				        std::string("PendularMat.") + name + " must be equal on both materials of a bridge; got '" + a + "' and '" + b + "'");
+		};
+		mustMatch("model", m1.model, m2.model);
+		mustMatch("rupture", m1.rupture, m2.rupture);
+		mustMatch("forceInContact", m1.forceInContact ? "True" : "False", m2.forceInContact ? "True" : "False");
+		mustMatch("linearFmax", std::to_string(m1.linearFmax), std::to_string(m2.linearFmax));
+		mustMatch("linearKc", std::to_string(m1.linearKc), std::to_string(m2.linearKc));
+		mustMatch("calibrateFrom", m1.calibrateFrom, m2.calibrateFrom);
+		phys->R1             = radiusOf(body1);
+		phys->R2             = radiusOf(body2);
+		if (math::isinf(phys->R1)) { // keep the sphere first: the kernels take R2 = inf for a wall
+			std::swap(phys->R1, phys->R2);
+			phys->theta1 = m2.theta;
+			phys->theta2 = m1.theta;
+		} else {
+			phys->theta1 = m1.theta;
+			phys->theta2 = m2.theta;
+		}
+		if (math::isinf(phys->R1)) throw std::invalid_argument("PendularMat: a liquid bridge needs at least one sphere");
+		phys->Vb             = (m1.Vb + m2.Vb) / 2;
+		phys->gamma          = (m1.gamma + m2.gamma) / 2;
+		phys->model          = m1.model;
+		phys->rupture        = m1.rupture;
+		phys->calibrateFrom  = m1.calibrateFrom;
+		phys->linearFmax     = m1.linearFmax;
+		phys->linearKc       = m1.linearKc;
+		phys->forceInContact = m1.forceInContact;
+		phys->buildBridge();
+	}
+	I->phys = phys;
+}
+
+bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
+{
+	const ScGeom& geom = static_cast<const ScGeom&>(*ig);
+	PendularPhys& phys = static_cast<PendularPhys&>(*ip);
+	const auto    id1 = I->getId1(), id2 = I->getId2();
+
+	if (geom.penetrationDepth < 0) { // separated
+		phys.shearForce = Vector3r::Zero();
+		if (!phys.active) {
+			phys.normalForce = Vector3r::Zero();
+			return phys.wet; // a wet pair waits for its first contact; a dry one is dropped
+		}
+		const Real gap = -geom.penetrationDepth;
+		if (gap > phys.bridge.rupture) {
+			phys.active = false;
+			phys.Fcap   = 0;
+			nBridges -= 1;
+			liquidVolume -= phys.Vb;
+			liquidReleased += phys.Vb;
+			return false;
+		}
+		phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
+		phys.normalForce = -phys.Fcap * geom.normal;
+		if (I->isActive) {
+			addForce(id1, -phys.normalForce, scene);
+			addForce(id2, phys.normalForce, scene);
+		}
+		return true;
+	}
+
+	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
+	if (phys.wet && !phys.active) {
+		phys.active = true;
+		nBridges += 1;
+		liquidVolume += phys.Vb;
+		liquidFormed += phys.Vb;
+	}
+	const State&   de1    = *Body::byId(id1, scene)->state;
+	const State&   de2    = *Body::byId(id2, scene)->state;
+	const Vector3r shift2 = scene->isPeriodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero();
+	const Vector3r shiftV = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
+	const Vector3r c1x    = geom.contactPoint - de1.pos;
+	const Vector3r c2x    = geom.contactPoint - de2.pos - shift2;
+	const Vector3r relVel = (de1.vel + de1.angVel.cross(c1x)) - (de2.vel + de2.angVel.cross(c2x)) + shiftV;
+	const Real     vn     = geom.normal.dot(relVel); // > 0: approaching
+	const Vector3r vs     = relVel - vn * geom.normal;
+
+	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
+	const Real fn    = math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn);
+	Vector3r&  shear = phys.shearForce;
+	shear            = geom.rotate(shear);
+	shear += phys.ks * scene->dt * vs;
+	Vector3r   shearVisc = Vector3r::Zero();
+	const Real maxFs     = fn * phys.tangensOfFrictionAngle;
+	if (shear.squaredNorm() > maxFs * maxFs) shear *= maxFs / shear.norm(); // Coulomb slip: elastic part capped, no viscous part
+	else shearVisc = phys.cs * vs;
+	phys.Fcap        = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
+	phys.normalForce = (fn - phys.Fcap) * geom.normal;
+	if (I->isActive) {
+		const Vector3r f = phys.normalForce + shear + shearVisc;
+		addForce(id1, -f, scene);
+		addForce(id2, f, scene);
+		addTorque(id1, -c1x.cross(f), scene);
+		addTorque(id2, c2x.cross(f), scene);
+	}
+	return true;
+}
+
+} // namespace yade

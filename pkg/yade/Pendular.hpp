@@ -1,0 +1,142 @@
+// YADE layer of yade-capillary: material, interaction physics, Ip2 and Law2 for wet (pendular)
+// granular matter. The capillary formulas live in pkg/kernels/models.hpp; this file only wires
+// them into YADE's class factory.
+#pragma once
+
+#include "YadeHeaders.hpp"
+#include "models.hpp"
+
+namespace yade {
+
+class PendularMat : public Material {
+public:
+	capillary::Model   modelId       = capillary::Model::willett_full; // resolved from `model` by postLoad
+	capillary::Rupture ruptureId     = capillary::Rupture::willett;
+	capillary::Model   calibrateId   = capillary::Model::willett_full;
+	Real               dampingRatioN = 0; // beta/omega for `en`, see dampingRatioFor() in Pendular.cpp
+	void               postLoad(PendularMat&);
+
+private:
+	// Attribute values after the last successful check: a rejected assignment is rolled back, so
+	// one bad value does not make every later assignment fail.
+	struct Checked {
+		Real        tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc;
+		bool        wet, forceInContact;
+		std::string model, rupture, calibrateFrom;
+	};
+	Checked checked() const;
+	void    restore(const Checked&);
+	void    validate();
+	Checked lastGood;
+
+public:
+	virtual ~PendularMat() = default;
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularMat, Material,
+		"Material of yade-capillary: linear viscoelastic contact (Gladkyy2014 eq. 3-4) with Coulomb friction, and optionally "
+		"a pendular liquid bridge that forms when two particles touch and breaks beyond the rupture distance. "
+		"Give either (:yref:`tc<PendularMat.tc>`, :yref:`en<PendularMat.en>`, :yref:`et<PendularMat.et>`) or "
+		"(:yref:`kn<PendularMat.kn>`, :yref:`cn<PendularMat.cn>`, :yref:`ks<PendularMat.ks>`, :yref:`cs<PendularMat.cs>`). "
+		"Set the liquid parameters first, then ``wet=True``; every value is checked when it is assigned, "
+		"combinations of two materials when their first interaction is created.",
+		((Real, tc, NaN, Attr::triggerPostLoad, "Contact duration [s], (0, inf); NaN if kn, cn, ks, cs are given. The normal stiffness and damping make the half period of the damped oscillation equal to tc."))
+		((Real, en, NaN, Attr::triggerPostLoad, "Normal restitution coefficient [-], (exp(-2), 1]. Exact for a binary collision including the rule that the contact never attracts (Schwager & Poeschel 2007), unlike the textbook formula."))
+		((Real, et, NaN, Attr::triggerPostLoad, "Tangential restitution coefficient [-], (0, 1]; sets ks = 2/7 kn-equivalent and cs as in YADE's ViscElMat."))
+		((Real, kn, NaN, Attr::triggerPostLoad, "Normal stiffness of this material [N/m], (0, inf); two materials combine in series. NaN if tc, en, et are given."))
+		((Real, cn, NaN, Attr::triggerPostLoad, "Normal damping of this material [N s/m], [0, inf); combined in series."))
+		((Real, ks, NaN, Attr::triggerPostLoad, "Tangential stiffness of this material [N/m], [0, inf); combined in series."))
+		((Real, cs, NaN, Attr::triggerPostLoad, "Tangential damping of this material [N s/m], [0, inf); combined in series."))
+		((Real, frictionAngle, 0.5, Attr::triggerPostLoad, "Contact friction angle [rad], [0, pi/2); the smaller of two materials is used."))
+		((bool, wet, false, Attr::triggerPostLoad, "True: liquid bridges form at contacts of two wet materials. Requires Vb > 0 and gamma > 0."))
+		((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean."))
+		((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean."))
+		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; formulas use the mean (Elskamp2018), the willett_elskamp rupture rule uses both."))
+		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model: weigert, willett_full, willett_reduced, rabinovich, rabinovich_lambert, richefeu, soulie, linear_irreversible. Must be equal on both materials."))
+		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32). Must be equal on both materials. linear_irreversible uses its own range fmax/kc."))
+		((bool, forceInContact, false, Attr::triggerPostLoad, "True: the bridge force at contact F(0) also acts during overlap (Richefeu2008, Roy); False: it is off during overlap (Gladkyy2014 eq. 4). Must be equal on both materials."))
+		((Real, linearFmax, 0, Attr::triggerPostLoad, "linear_irreversible: maximum adhesive force [N], (0, inf); 0 (with linearKc = 0) to calibrate from calibrateFrom."))
+		((Real, linearKc, 0, Attr::triggerPostLoad, "linear_irreversible: adhesive stiffness [N/m], (0, inf); 0 (with linearFmax = 0) to calibrate from calibrateFrom."))
+		((std::string, calibrateFrom, "willett_full", Attr::triggerPostLoad, "linear_irreversible: model whose maximum force and adhesive energy the linear law matches, per bridge (Roy section 4.2).")),
+		createIndex(); lastGood = checked();
+	);
+	// clang-format on
+	REGISTER_CLASS_INDEX(PendularMat, Material);
+};
+REGISTER_SERIALIZABLE(PendularMat);
+
+class PendularPhys : public NormShearPhys {
+public:
+	capillary::Bridge bridge {}; // per-bridge invariants, rebuilt from the attributes by postLoad
+	void              postLoad(PendularPhys&);
+	void              buildBridge();
+	virtual ~PendularPhys() = default;
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularPhys, NormShearPhys,
+		"Interaction physics of :yref:`PendularMat`: contact parameters and one liquid bridge. State machine: no bridge -> "
+		"formed at the first contact (``active``) -> broken beyond ``sCrit`` (the interaction is then removed, so a new bridge "
+		"needs a new contact). ``normalForce`` includes the capillary force.",
+		((Real, cn, 0, Attr::readonly, "Normal damping [N s/m]."))
+		((Real, cs, 0, Attr::readonly, "Tangential damping [N s/m]."))
+		((Real, tangensOfFrictionAngle, 0, Attr::readonly, "Tangent of the contact friction angle [-]."))
+		((bool, wet, false, Attr::readonly, "Both materials are wet: a bridge forms at contact."))
+		((bool, active, false, Attr::readonly, "A liquid bridge exists (formed at contact, not yet broken)."))
+		((bool, forceInContact, false, Attr::readonly, "F(0) acts during overlap."))
+		((Real, R1, 0, Attr::readonly, "Radius of body 1 [m] (inf for a wall or facet)."))
+		((Real, R2, 0, Attr::readonly, "Radius of body 2 [m] (inf for a wall or facet)."))
+		((Real, Vb, 0, Attr::readonly, "Liquid bridge volume [m^3]."))
+		((Real, gamma, 0, Attr::readonly, "Surface tension [N/m]."))
+		((Real, theta1, 0, Attr::readonly, "Contact angle on body 1 [rad]."))
+		((Real, theta2, 0, Attr::readonly, "Contact angle on body 2 [rad]."))
+		((std::string, model, "", Attr::readonly, "Capillary model of this bridge (resolved once, at creation)."))
+		((std::string, rupture, "", Attr::readonly, "Rupture rule of this bridge."))
+		((std::string, calibrateFrom, "", Attr::readonly, "linear_irreversible: reference model of the calibration."))
+		((Real, linearFmax, 0, Attr::readonly, "linear_irreversible: maximum force as given [N] (0: calibrated)."))
+		((Real, linearKc, 0, Attr::readonly, "linear_irreversible: stiffness as given [N/m] (0: calibrated)."))
+		((Real, R, 0, Attr::readonly, "Effective radius 2R1R2/(R1+R2) [m]; 2R for a wall (Derjaguin sphere-plane limit)."))
+		((Real, sCrit, 0, Attr::readonly, "Rupture distance: largest surface gap of the bridge [m]."))
+		((Real, force0, 0, Attr::readonly, "Capillary force at contact F(0) [N]."))
+		((Real, Fcap, 0, Attr::readonly, "Capillary force of the last step [N], positive = attraction.")),
+		createIndex();
+	);
+	// clang-format on
+	REGISTER_CLASS_INDEX(PendularPhys, NormShearPhys);
+};
+REGISTER_SERIALIZABLE(PendularPhys);
+
+class Ip2_PendularMat_PendularMat_PendularPhys : public IPhysFunctor {
+public:
+	void go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
+	FUNCTOR2D(PendularMat, PendularMat);
+	// clang-format off
+	YADE_CLASS_BASE_DOC(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
+		"Creates :yref:`PendularPhys` from two :yref:`PendularMat`. Mixing rules: tc, en, et arithmetic means; kn, cn, ks, cs "
+		"in series; friction angle the smaller; Vb and gamma arithmetic means; contact angles kept per body; model, rupture rule, "
+		"forceInContact and linear parameters must be equal (else an error). Effective mass m1 m2/(m1+m2), where a body that is "
+		"not dynamic counts as infinitely heavy (unless neither is dynamic). A body whose shape is not a Sphere (wall, facet) "
+		"is a plane for the bridge.");
+	// clang-format on
+};
+REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
+
+class Law2_ScGeom_PendularPhys_Bridge : public LawFunctor {
+public:
+	bool go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I) override;
+	FUNCTOR2D(ScGeom, PendularPhys);
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
+		"Contact law of yade-capillary. In contact: linear viscoelastic normal force without attraction while unloading, "
+		"incremental tangential spring-dashpot with Coulomb friction (Gladkyy2014 eq. 3-4), plus F(0) if forceInContact. "
+		"Separated with a bridge: the capillary force of the bridge's model along the line of centres. A bridge needs "
+		"the interaction to survive beyond contact: use Bo1_Sphere_Aabb(aabbEnlargeFactor=k) and "
+		"Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=k) with k large enough for the rupture distance.",
+		((OpenMPAccumulator<int>, nBridges, , Attr::noSave | Attr::readonly, "Number of liquid bridges that exist now [-]."))
+		((OpenMPAccumulator<Real>, liquidVolume, , Attr::noSave | Attr::readonly, "Liquid volume in the bridges that exist now [m^3]."))
+		((OpenMPAccumulator<Real>, liquidFormed, , Attr::noSave | Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014)."))
+		((OpenMPAccumulator<Real>, liquidReleased, , Attr::noSave | Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume.")),
+		/*ctor*/,
+		/*py*/);
+	// clang-format on
+};
+REGISTER_SERIALIZABLE(Law2_ScGeom_PendularPhys_Bridge);
+
+} // namespace yade

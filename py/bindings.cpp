@@ -1,0 +1,132 @@
+// Python module of the pure capillary kernels (_yade_capillary_kernels), re-exported as
+// yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
+#include "models.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+
+namespace py = pybind11;
+using namespace capillary;
+
+namespace {
+
+BridgeSpec spec(const std::string& model, double R1, double R2, double volume, double gamma, double theta,
+                std::optional<double> theta2, const std::string& rupture, double linear_fmax, double linear_kc,
+                const std::string& calibrate_from)
+{
+	BridgeSpec s;
+	s.model          = model_from_name(model);
+	s.rupture        = rupture_from_name(rupture);
+	s.calibrate_from = model_from_name(calibrate_from);
+	s.R1             = R1;
+	s.R2             = R2;
+	s.volume         = volume;
+	s.gamma          = gamma;
+	s.theta1         = theta;
+	s.theta2         = theta2.value_or(theta);
+	s.linear_fmax    = linear_fmax;
+	s.linear_kc      = linear_kc;
+	return s;
+}
+
+py::dict bridge_dict(const Bridge& b)
+{
+	py::dict d;
+	d["model"]   = name_of(b.model);
+	d["R"]       = b.R;
+	d["theta"]   = b.theta;
+	d["rupture"] = b.rupture;
+	d["force0"]  = b.force0;
+	d["energy"]  = adhesive_energy(b);
+	if (b.model == Model::linear_irreversible) {
+		d["linear_fmax"] = b.k[0];
+		d["linear_kc"]   = b.k[1];
+	}
+	return d;
+}
+
+const char* common_args = R"(
+    model: one of models() (weigert, willett_full, willett_reduced, rabinovich, rabinovich_lambert,
+           richefeu, soulie, linear_irreversible)
+    R1, R2: sphere radii [m]; R2 = inf for a sphere-wall (plane) bridge
+    volume: liquid bridge volume [m^3], > 0
+    gamma: surface tension [N/m], > 0
+    theta: contact angle [rad] in [0, pi/2) (on sphere 1; also on sphere 2 unless theta2 is given)
+    theta2: contact angle on sphere 2 [rad]; the formulas use the mean angle
+    rupture: rupture rule, one of rupture_rules() (lian, willett, willett_elskamp)
+    linear_fmax [N], linear_kc [N/m]: linear_irreversible parameters; both 0 = calibrate from
+           calibrate_from by equal maximum force and adhesive energy (Roy et al. 4.2)
+Raises ValueError naming the parameter and its allowed range.)";
+
+} // namespace
+
+PYBIND11_MODULE(_yade_capillary_kernels, m)
+{
+	m.doc() = "Pure capillary bridge models of yade-capillary (SI units, radians).";
+
+	m.def("models", [] {
+		py::list l;
+		for (const auto& r : models()) l.append(py::make_tuple(r.name, r.reference, r.monotone));
+		return l;
+	}, "List of (name, reference, monotone) for every capillary model.");
+	m.def("rupture_rules", [] {
+		py::list l;
+		for (const auto& r : rupture_rules()) l.append(py::make_tuple(r.name, r.reference));
+		return l;
+	}, "List of (name, reference) for every rupture rule.");
+
+	m.def(
+	        "force",
+	        [](const std::string& model, py::array_t<double> gap, double R1, double R2, double volume, double gamma, double theta,
+	           std::optional<double> theta2, const std::string& rupture, double linear_fmax, double linear_kc,
+	           const std::string& calibrate_from) -> py::object {
+		        const Bridge b = make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from));
+		        py::array_t<double> out(gap.request().shape);
+		        double*             o = out.mutable_data();
+		        const double*       g = gap.data();
+		        for (py::ssize_t i = 0; i < gap.size(); ++i) {
+			        if (std::isnan(g[i])) throw py::value_error("gap is NaN; allowed: any real number [m]");
+			        o[i] = bridge_force(b, g[i]);
+		        }
+		        if (gap.ndim() == 0) return py::float_(o[0]);
+		        return std::move(out);
+	        },
+	        py::arg("model"), py::arg("gap"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("gamma"), py::arg("theta") = 0.0,
+	        py::arg("theta2") = py::none(), py::arg("rupture") = "willett", py::arg("linear_fmax") = 0.0, py::arg("linear_kc") = 0.0,
+	        py::arg("calibrate_from") = "willett_full",
+	        (std::string("Capillary force [N] (attraction > 0) at surface gap(s) `gap` [m] (float or array): 0 beyond the rupture "
+	                     "distance, F(0) for gap <= 0.")
+	         + common_args)
+	                .c_str());
+
+	m.def(
+	        "bridge",
+	        [](const std::string& model, double R1, double R2, double volume, double gamma, double theta, std::optional<double> theta2,
+	           const std::string& rupture, double linear_fmax, double linear_kc, const std::string& calibrate_from) {
+		        return bridge_dict(make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from)));
+	        },
+	        py::arg("model"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("gamma"), py::arg("theta") = 0.0,
+	        py::arg("theta2") = py::none(), py::arg("rupture") = "willett", py::arg("linear_fmax") = 0.0, py::arg("linear_kc") = 0.0,
+	        py::arg("calibrate_from") = "willett_full",
+	        (std::string("Per-bridge invariants as a dict: R (effective radius) [m], theta [rad], rupture (gap) [m], force0 = F(0) [N], "
+	                     "energy = integral of F over [0, rupture] [J], and for linear_irreversible linear_fmax [N], linear_kc [N/m].")
+	         + common_args)
+	                .c_str());
+
+	m.def(
+	        "rupture_distance",
+	        [](const std::string& rule, double R1, double R2, double volume, double theta, std::optional<double> theta2) {
+		        BridgeSpec s = spec("willett_reduced", R1, R2, volume, 1.0, theta, theta2, rule, 0, 0, "willett_full");
+		        return make_bridge(s).rupture;
+	        },
+	        py::arg("rule"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta") = 0.0, py::arg("theta2") = py::none(),
+	        "Rupture distance [m] (largest surface gap) of a rule: lian, willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. "
+	        "32). R1, R2 [m] (R2 = inf: wall), volume [m^3], theta, theta2 [rad]. Raises ValueError on bad input.");
+
+	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
+	      "Willett's f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3 [-] and theta [rad].");
+}

@@ -1,0 +1,9 @@
+"""yade-capillary: wet (pendular) granular matter for YADE.
+
+Modules:
+    kernels  -- the pure capillary bridge models (C++, pybind11): force, bridge, rupture_distance
+    cases    -- case tables (Gladkyy & Schwarze 2014, Table 1)
+    scene    -- helpers that build YADE engine lists for the plugin's functors (inside yade only)
+    twosphere -- the two-sphere pull-off scenario (inside yade only) and its summary
+    plots    -- matplotlib figures (PNG)
+"""

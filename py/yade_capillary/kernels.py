@@ -1,0 +1,22 @@
+"""The pure capillary bridge models of yade-capillary (SI units, radians).
+
+Works in plain ``python3`` and inside ``yade``. Example::
+
+    import numpy as np
+    from yade_capillary import kernels
+    a = np.linspace(0, 2e-4, 200)                                   # surface gap [m]
+    F = kernels.force("willett_full", a, R1=2.381e-3, R2=2.381e-3,  # radii [m]
+                      volume=13.6e-12, gamma=20.6e-3, theta=0.0)   # [m^3], [N/m], [rad]
+
+``force(model, gap, R1, R2, volume, gamma, theta=0, theta2=None, rupture='willett', ...)``
+returns the attractive force [N]; ``bridge(...)`` the per-bridge invariants (effective radius,
+rupture distance, F(0), adhesive energy); ``rupture_distance(rule, R1, R2, volume, theta)``;
+``models()`` and ``rupture_rules()`` list names with references. Use ``R2=float('inf')`` for a
+sphere-wall bridge. Bad input raises ValueError naming the parameter and its allowed range.
+"""
+from _yade_capillary_kernels import bridge, force, models, rupture_distance, rupture_rules, willett_coefficients
+
+__all__ = ["bridge", "force", "models", "rupture_distance", "rupture_rules", "willett_coefficients", "MODEL_NAMES", "RUPTURE_NAMES"]
+
+MODEL_NAMES = [m[0] for m in models()]
+RUPTURE_NAMES = [r[0] for r in rupture_rules()]

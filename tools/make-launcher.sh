@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Build an overlay YADE prefix (symlinks to every file of the system yade-double folder plus our
+# plugin) and the launcher build/yade-capillary, which runs the system yade with that prefix.
+set -euo pipefail
+build=$1; src=$2; libdir=$3; yade=$4
+overlay="$build/prefix/lib/x86_64-linux-gnu/yade-double"
+rm -rf "$build/prefix"; mkdir -p "$overlay"
+for f in "$libdir"/*; do ln -s "$f" "$overlay/$(basename "$f")"; done
+ln -s "$build/lib/libyadecapillary.so" "$overlay/libyadecapillary.so"
+cat > "$build/yade-capillary" <<SH
+#!/bin/sh
+# Debian's YADE with the yade-capillary plugin loaded; takes the same arguments as yade.
+export YADE_PREFIX="$build/prefix"
+export PYTHONPATH="$src/py:$build/python\${PYTHONPATH:+:\$PYTHONPATH}"
+exec "$yade" "\$@"
+SH
+chmod +x "$build/yade-capillary"
