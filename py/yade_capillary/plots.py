@@ -1,0 +1,64 @@
+"""PNG figures (matplotlib, Agg backend) for the scenarios."""
+import csv
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (backend first)
+
+
+def read_forces(path):
+    """Read forces.csv into {(case, model): (gaps [m], forces [N])}."""
+    curves = defaultdict(lambda: ([], []))
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            g, F = curves[(row["case"], row["model"])]
+            g.append(float(row["gap_m"]))
+            F.append(float(row["force_N"]))
+    return curves
+
+
+def force_curves(curves, case, models, path, title, scale=1e3, unit="mN", gap_scale=1e6, gap_unit="um"):
+    """F(a) of one case for several models, as in Gladkyy 2014 Figures 2 and 3."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for m in models:
+        g, F = curves[(case, m)]
+        ax.plot([x * gap_scale for x in g], [y * scale for y in F], label=m, lw=1.2)
+    ax.set_xlabel("separation a [%s]" % gap_unit)
+    ax.set_ylabel("capillary force F [%s]" % unit)
+    ax.set_title(title, fontsize=10)
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def summary_bars(summary, derjaguin, path):
+    """Forces at a = 0, 0.5 a_crit, 0.95 a_crit per case and model, scaled by 2 pi R gamma cos(theta).
+
+    Gladkyy 2014 Figure 4 scales by measured forces; without the experimental data the
+    Derjaguin force of each case is the common scale here.
+    """
+    keys = ("F_0_N", "F_0.5_N", "F_0.95_N")
+    titles = ("a = 0", "a = 0.5 a_crit", "a = 0.95 a_crit")
+    cases = list(dict.fromkeys(r["case"] for r in summary))
+    models = list(dict.fromkeys(r["model"] for r in summary))
+    fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    width = 0.8 / len(models)
+    for ax, key, title in zip(axes, keys, titles):
+        for j, m in enumerate(models):
+            vals = [next(r[key] for r in summary if r["case"] == c and r["model"] == m) / derjaguin[c] for c in cases]
+            ax.bar([i + (j - len(models) / 2) * width for i in range(len(cases))], vals, width, label=m)
+        ax.set_ylabel("F / (2 pi R gamma cos theta)")
+        ax.set_title(title, fontsize=10)
+        ax.grid(alpha=0.3, axis="y")
+    axes[-1].set_xticks(range(len(cases)))
+    axes[-1].set_xticklabels(cases)
+    axes[0].legend(fontsize=7, ncol=4)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

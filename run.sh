@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# yade-capillary entry point. Sets up (installs, fetches headers, builds) when needed, then:
+#   ./run.sh validate   two-sphere validation (Gladkyy 2014, Table 1): summary table + results/two_sphere/
+#   ./run.sh test       all tests (kernel unit tests, Python tests, in-YADE tests)
+#   ./run.sh bench      speed benchmark against YADE's built-in capillary law
+#   ./run.sh setup      only set up and build
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")" && pwd)
+BUILD_DIR=${BUILD_DIR:-$ROOT/build}
+cmd=${1:-}
+case "$cmd" in
+  setup|validate|test|bench) ;;
+  *) echo "usage: $0 {validate|test|bench|setup}"; exit 2 ;;
+esac
+BUILD_DIR=$BUILD_DIR "$ROOT/tools/setup.sh"
+cd "$ROOT"
+case "$cmd" in
+  validate) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/two_sphere.py results/two_sphere ;;
+  test) ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" ;;
+  bench) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/benchmark_packing.py ;;
+  setup) ;;
+esac
