@@ -2,11 +2,38 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <iostream>
+#include <mutex>
 #include <tuple>
 
 namespace yade {
 
-YADE_PLUGIN((PendularMat)(PendularPhys)(Ip2_PendularMat_PendularMat_PendularPhys)(Law2_ScGeom_PendularPhys_Bridge));
+YADE_PLUGIN((PendularMat)(PendularPhys)(Ip2_PendularMat_PendularMat_PendularPhys)(Law2_ScGeom_PendularPhys_Bridge)(PendularCheck));
+
+namespace pendular {
+	namespace {
+		std::mutex  errorMutex;
+		std::string pendingError;
+	}
+	void reportError(const std::string& message)
+	{
+		const std::lock_guard<std::mutex> lock(errorMutex);
+		if (pendingError.empty()) pendingError = message;
+	}
+	std::string takeError()
+	{
+		const std::lock_guard<std::mutex> lock(errorMutex);
+		std::string                       message;
+		std::swap(message, pendingError);
+		return message;
+	}
+} // namespace pendular
+
+void PendularCheck::action()
+{
+	const std::string message = pendular::takeError();
+	if (!message.empty()) throw std::invalid_argument(message);
+}
 
 namespace {
 
@@ -129,6 +156,21 @@ void PendularPhys::postLoad(PendularPhys&)
 void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
 {
 	if (I->phys) return;
+	try {
+		I->phys = makePhys(b1, b2, I);
+	} catch (const std::exception& e) {
+		// No exception may leave InteractionLoop's OpenMP loop: record it for PendularCheck, stop
+		// the run after this step, and leave an inert interaction (no bridge, no contact force).
+		const std::string message = std::string(e.what()) + " (interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2()) + ")";
+		pendular::reportError(message);
+		std::cerr << "yade-capillary ERROR: " << message << std::endl;
+		scene->stopAtIter = scene->iter + 1;
+		I->phys           = shared_ptr<PendularPhys>(new PendularPhys());
+	}
+}
+
+shared_ptr<PendularPhys> Ip2_PendularMat_PendularMat_PendularPhys::makePhys(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
+{
 	const auto& m1 = static_cast<const PendularMat&>(*b1);
 	const auto& m2 = static_cast<const PendularMat&>(*b2);
 	auto        phys = shared_ptr<PendularPhys>(new PendularPhys());
@@ -204,7 +246,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1
 		phys->forceInContact = m1.forceInContact;
 		phys->buildBridge();
 	}
-	I->phys = phys;
+	return phys;
 }
 
 bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "YadeHeaders.hpp"
+#include <core/GlobalEngine.hpp>
 #include "models.hpp"
 
 namespace yade {
@@ -106,6 +107,7 @@ REGISTER_SERIALIZABLE(PendularPhys);
 class Ip2_PendularMat_PendularMat_PendularPhys : public IPhysFunctor {
 public:
 	void go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
+	shared_ptr<PendularPhys> makePhys(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I);
 	FUNCTOR2D(PendularMat, PendularMat);
 	// clang-format off
 	YADE_CLASS_BASE_DOC(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
@@ -117,6 +119,27 @@ public:
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
+
+// Errors found while interactions are created (inside InteractionLoop's OpenMP region, where an
+// exception would terminate the process) are recorded here; PendularCheck raises them as a
+// Python exception right after the InteractionLoop of the same step.
+namespace pendular {
+	void        reportError(const std::string& message); // keeps the first message until taken
+	std::string takeError();                             // returns "" if there is none
+}
+
+class PendularCheck : public GlobalEngine {
+public:
+	void action() override;
+	// clang-format off
+	YADE_CLASS_BASE_DOC(PendularCheck, GlobalEngine,
+		"Raises (as a Python ValueError from O.step/O.run) the first input error that :yref:`Ip2_PendularMat_PendularMat_PendularPhys` "
+		"met while creating interactions in this step, e.g. two materials with different models or a bridge outside its model's "
+		"domain. Place it right after the InteractionLoop (yade_capillary.scene.engines does). Without it, such an error stops "
+		"the simulation at the end of the step and is printed, and the interaction gets no bridge and no contact force.");
+	// clang-format on
+};
+REGISTER_SERIALIZABLE(PendularCheck);
 
 class Law2_ScGeom_PendularPhys_Bridge : public LawFunctor {
 public:

@@ -1,7 +1,8 @@
 """Engine lists for the yade-capillary functors (import inside yade only)."""
 from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
                           Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
-                          Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator)
+                          Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
+                          PendularCheck)
 
 
 def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0):
@@ -23,6 +24,7 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
             [Ip2_PendularMat_PendularMat_PendularPhys()],
             [Law2_ScGeom_PendularPhys_Bridge(label=law_label)],
         ),
+        PendularCheck(),
         *extra,
         NewtonIntegrator(gravity=gravity, damping=damping),
     ]
