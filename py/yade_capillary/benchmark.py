@@ -57,14 +57,33 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100):
             "particle_steps_per_s": len(O.bodies) * steps / wall, "wall_s": wall}
 
 
-def run(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric"):
-    """Measure YADE's built-in law (baseline) then ours, on identical scenes; return both results."""
-    builtin = measure("YADE Law2_ScGeom_ViscElCapPhys_Basic (%s)" % builtin_model,
-                      ViscElCapMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=0, Capillar=True, Vb=VB, gamma=GAMMA, theta=0,
-                                   CapillarType=builtin_model),
-                      InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
-                                      [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
-    ours = measure("yade-capillary Law2_ScGeom_PendularPhys_Bridge (%s)" % model,
+def builtin_run(capillar_type, n, steps, seed, vel):
+    """YADE's built-in law on the benchmark scene."""
+    return measure("YADE Law2_ScGeom_ViscElCapPhys_Basic (%s)" % capillar_type,
+                   ViscElCapMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=0, Capillar=True, Vb=VB, gamma=GAMMA, theta=0,
+                                CapillarType=capillar_type),
+                   InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
+                                   [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
+
+
+def run(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
+    """Measure YADE's built-in law (baseline), its zero-force variant, then ours, on identical scenes.
+
+    The zero-force variant (CapillarType "None": the built-in law with the same bookkeeping and a
+    capillary force of 0) is the floor set by YADE's interaction loop, geometry and dispatch,
+    which no Law2 functor can go below. Each is measured `repeats` times, interleaved, and the fastest repetition is kept (noise on a
+    shared machine only ever adds time).
+    """
+    runs = [[], [], []]
+    for _ in range(repeats):
+        runs[0].append(builtin_run(builtin_model, n, steps, seed, vel))
+        runs[1].append(builtin_run("None", n, steps, seed, vel))
+        runs[2].append(ours_run(model, n, steps, seed, vel))
+    return [min(r, key=lambda x: x["ns_per_bridge_step"]) for r in runs]
+
+
+def ours_run(model, n, steps, seed, vel):
+    """Our law on the benchmark scene."""
+    return measure("yade-capillary Law2_ScGeom_PendularPhys_Bridge (%s)" % model,
                    PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=0, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model),
                    None, n, steps, seed, vel)
-    return builtin, ours

@@ -1,0 +1,54 @@
+// Exact pendular liquid bridge of fixed volume between two spheres (or a sphere and a plane),
+// zero gravity: the axisymmetric meniscus of constant mean curvature (Young-Laplace equation),
+// solved by shooting on the filling angle and the pressure, with continuation along the branch
+// of solutions. This is the reference the closed-form models were fitted to (Lian 1993,
+// Willett 2000); no DEM code offers it at run time. SI units, radians.
+//
+// Profile in arc length s, rotating about the line of centres (x axis):
+//   x' = cos(phi), y' = sin(phi), phi' = cos(phi)/y - P,   P = dp/gamma (dp = p_liquid - p_gas)
+// The axial force F = pi gamma (2 y cos(phi) - P y^2) is a first integral of these equations: the
+// neck method (at the narrowest section) and the contact-line method (at a contact line) give the
+// same value, which checks the integration.
+#pragma once
+
+#include <vector>
+
+namespace capillary {
+namespace yl {
+
+	struct Solution {
+		double gap;           // [m] surface separation a
+		double beta1, beta2;  // [rad] filling (half-embracing) angles on sphere 1 and 2 (beta2 = 0 for a plane)
+		double contact_radius1, contact_radius2; // [m] radii of the contact lines
+		double neck_radius;   // [m] smallest radius of the meniscus
+		double pressure;      // [Pa] p_liquid - p_gas (negative: suction)
+		double force_neck;    // [N] attraction by the neck (gorge) method
+		double force_contact; // [N] attraction by the contact-line method (sphere 1)
+		double volume;        // [m^3] volume of the computed profile (equals the input to ~1e-10)
+	};
+
+	// One bridge: the geometry is fixed, the gap varies. The constructor follows the branch of
+	// solutions from contact (a = 0) by continuation in the filling angle and finds the largest
+	// gap with a stable bridge (the fold of the branch: the true rupture distance).
+	class Bridge {
+	public:
+		// R2 = infinity: sphere-plane. theta2 < 0: equal to theta1. Throws std::invalid_argument for
+		// inputs outside R > 0, V > 0, theta in [0, pi/2), and std::runtime_error if no bridge exists.
+		Bridge(double R1, double R2, double volume, double theta1, double theta2 = -1);
+		double   rupture_gap() const { return rupture_; }     // [m]
+		// The stable bridge at gap in [0, rupture_gap()]; gamma [N/m] scales forces and pressure.
+		// Throws std::invalid_argument outside that range.
+		Solution solve(double gap, double gamma) const;
+
+	private:
+		struct Point {
+			double beta1, P, a; // dimensionless (lengths / R1)
+		};
+		Point solve_at_beta(double beta1, const Point& guess) const; // unknowns P, a
+		double R1_, R2_, V_, t1_, t2_; // R2_, V_ dimensionless (/R1, /R1^3)
+		double rupture_;               // [m]
+		std::vector<Point> branch_;    // stable branch, from contact to rupture (a increasing)
+	};
+
+} // namespace yl
+} // namespace capillary
