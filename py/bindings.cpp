@@ -1,6 +1,7 @@
 // Python module of the pure capillary kernels (_yade_capillary_kernels), re-exported as
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
+#include "young_laplace.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -126,6 +127,29 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 	        py::arg("rule"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta") = 0.0, py::arg("theta2") = py::none(),
 	        "Rupture distance [m] (largest surface gap) of a rule: lian, willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. "
 	        "32). R1, R2 [m] (R2 = inf: wall), volume [m^3], theta, theta2 [rad]. Raises ValueError on bad input.");
+
+	py::class_<yl::Bridge>(m, "YoungLaplaceBridge",
+	                       "Exact pendular bridge of fixed volume (Young-Laplace, zero gravity) between spheres R1, R2 [m] "
+	                       "(R2 = inf: sphere-plane), volume [m^3], contact angles theta1, theta2 [rad] (theta2 < 0: equal to "
+	                       "theta1). The constructor follows the branch of solutions from contact to its fold, the true rupture "
+	                       "gap. Raises ValueError for bad input and RuntimeError if no bridge exists.")
+	        .def(py::init<double, double, double, double, double>(), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta1") = 0.0,
+	             py::arg("theta2") = -1.0)
+	        .def_property_readonly("rupture_gap", &yl::Bridge::rupture_gap, "Largest gap with a stable bridge [m].")
+	        .def(
+	                "solve",
+	                [](const yl::Bridge& b, double gap, double gamma) {
+		                const yl::Solution s = b.solve(gap, gamma);
+		                py::dict           d;
+		                d["gap"] = s.gap, d["beta1"] = s.beta1, d["beta2"] = s.beta2, d["contact_radius1"] = s.contact_radius1;
+		                d["contact_radius2"] = s.contact_radius2, d["neck_radius"] = s.neck_radius, d["pressure"] = s.pressure;
+		                d["force_neck"] = s.force_neck, d["force_contact"] = s.force_contact, d["volume"] = s.volume;
+		                return d;
+	                },
+	                py::arg("gap"), py::arg("gamma"),
+	                "Stable bridge at gap [m] in [0, rupture_gap], surface tension gamma [N/m]: dict with gap [m], beta1, beta2 "
+	                "(filling angles) [rad], contact_radius1/2 [m], neck_radius [m], pressure (p_liquid - p_gas) [Pa], "
+	                "force_neck and force_contact (attraction by the neck and contact-line methods) [N], volume [m^3].");
 
 	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
 	      "Willett's f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3 [-] and theta [rad].");

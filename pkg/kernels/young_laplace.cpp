@@ -55,45 +55,48 @@ namespace yl {
 			return y5;
 		}
 
-		struct Shot {
+		// Half of a meniscus: from its neck (x0, y0), where the profile is parallel to the axis, towards
+		// +x until the profile direction is the one that the contact angle theta requires on the
+		// sphere of centre c and radius R (R = inf: the plane x = c), seen from that point. The
+		// residual is the signed distance of that point from the solid: zero for a bridge. (Stopping
+		// where the profile meets the solid instead is singular for theta = 0, where the meniscus
+		// touches the sphere tangentially.) The left half is computed in the mirror image x -> -x.
+		struct Half {
 			bool   ok = false;
-			double angle_residual = 0, volume = 0, beta2 = 0, y_end = 0, phi_end = 0;
-			double neck_y = inf, neck_phi = 0;
+			double distance = 0; // signed distance of the contact point from the solid surface
+			double W = 0;        // integral of pi y^2 dx from the neck to the contact line
+			double cap = 0;      // volume of the sphere cap beyond the contact line
+			double beta = 0;     // filling angle on that sphere
+			double y_end = 0;
 		};
 
-		// Integrate the meniscus from the contact line on sphere 1 (filling angle beta1) to sphere 2
-		// (radius R2, or a plane if R2 = inf), for pressure P and gap a (all scaled by R1).
-		Shot shoot(double beta1, double P, double a, double R2, double t1, double t2)
+		Half half(double x0, double y0, double P, double c, double R, double theta)
 		{
-			const double tol = 1e-12;
-			const bool   plane = std::isinf(R2);
-			const double c1 = -(a / 2 + 1), c2 = plane ? 0 : a / 2 + R2;
-			auto         g = [&](const State& s) { return plane ? a / 2 - s[0] : (s[0] - c2) * (s[0] - c2) + s[1] * s[1] - R2 * R2; };
-			Shot         out;
-			State        s = { c1 + std::cos(beta1), std::sin(beta1), beta1 + t1 - pi / 2, 0 };
-			if (!(s[1] > 0) || g(s) <= 0) return out;
-			// The neck: y is smallest where phi crosses zero from below.
-			out.neck_y   = s[1];
-			out.neck_phi = s[2];
-			double h = 0.01, length = 0;
-			for (int step = 0; step < 200000 && length < 100; ++step) {
+			const double tol   = 1e-12;
+			const bool   plane = std::isinf(R);
+			auto         beta  = [&](const State& q) { return plane ? 0.0 : std::atan2(q[1], c - q[0]); };
+			auto         angle = [&](const State& q) { return q[2] - (pi / 2 - beta(q) - theta); };
+			Half         out;
+			State        s = { x0, y0, 0, 0 };
+			if (!(y0 > 0) || angle(s) >= 0) return out;
+			double h = 0.01 * y0, length = 0;
+			for (int step = 0; step < 100000 && length < 100; ++step) {
 				double      err;
 				const State n = dopri_step(s, P, h, err);
 				if (!(err <= tol) || !(n[1] > 0)) {
-					if (!(n[1] > 0) && err <= tol && h < 1e-14) return out;
 					h *= std::max(0.1, 0.9 * std::pow(tol / std::max(err, 1e-300), 0.2));
-					if (h < 1e-14) return out;
+					if (h < 1e-15) return out;
 					continue;
 				}
-				auto refine = [&](auto fn) { // h* in (0, h] with fn(step(s, h*)) = 0, by the Illinois method
-					double lo = 0, hi = h, flo = fn(s), fhi = fn(n), e;
+				if (angle(n) >= 0) { // find the step h* in (0, h] that lands on the contact condition (Illinois method)
+					double lo = 0, hi = h, flo = angle(s), fhi = angle(n), e;
 					int    side = 0;
 					State  m     = n;
-					for (int it = 0; it < 100 && hi - lo > 1e-15 * (1 + hi); ++it) {
+					for (int it = 0; it < 100 && hi - lo > 1e-16 * (1 + hi); ++it) {
 						const double mid = (lo * fhi - hi * flo) / (fhi - flo);
 						m                = dopri_step(s, P, mid, e);
-						const double fm  = fn(m);
-						if (fm == 0) return m;
+						const double fm  = angle(m);
+						if (fm == 0) break;
 						if ((fm > 0) == (flo > 0)) {
 							lo = mid, flo = fm;
 							if (side == -1) fhi /= 2;
@@ -104,30 +107,15 @@ namespace yl {
 							side = 1;
 						}
 					}
-					return m;
-				};
-				if (s[2] < 0 && n[2] >= 0) { // interior neck
-					const State m = refine([](const State& q) { return q[2]; });
-					out.neck_y = m[1], out.neck_phi = m[2];
-				}
-				if (g(n) <= 0) { // reached sphere 2 (or the plane)
-					const State e = refine(g);
-					out.y_end     = e[1];
-					out.phi_end   = e[2];
-					double cap2   = 0;
-					if (plane) {
-						out.beta2          = 0;
-						out.angle_residual = e[2] - (pi / 2 - t2);
-					} else {
-						out.beta2             = std::atan2(e[1], c2 - e[0]);
-						const double h2       = 2 * R2 * std::pow(std::sin(out.beta2 / 2), 2);
-						cap2                  = pi * h2 * h2 * (3 * R2 - h2) / 3;
-						out.angle_residual    = e[2] - (pi / 2 - out.beta2 - t2);
+					out.y_end    = m[1];
+					out.W        = m[3];
+					out.beta     = beta(m);
+					out.distance = plane ? c - m[0] : std::hypot(m[0] - c, m[1]) - R;
+					if (!plane) {
+						const double hc = 2 * R * std::pow(std::sin(out.beta / 2), 2); // R (1 - cos beta)
+						out.cap         = pi * hc * hc * (3 * R - hc) / 3;
 					}
-					const double h1 = 2 * std::pow(std::sin(beta1 / 2), 2);
-					out.volume      = e[3] - pi * h1 * h1 * (3 - h1) / 3 - cap2;
-					if (e[1] < out.neck_y) out.neck_y = e[1], out.neck_phi = e[2];
-					out.ok = std::isfinite(out.volume) && std::abs(e[2]) < pi;
+					out.ok = std::isfinite(out.W) && out.beta >= 0;
 					return out;
 				}
 				if (std::abs(n[2]) > pi) return out; // the profile turned back: not a pendular bridge
@@ -138,40 +126,80 @@ namespace yl {
 			return out;
 		}
 
-		// Damped Newton on two unknowns with a finite-difference Jacobian. `res` returns false if the
-		// residual cannot be evaluated (no bridge for these values).
-		template <class F> bool newton2(std::array<double, 2>& u, const std::array<double, 2>& scale, F res)
+		struct Shot {
+			bool   ok = false;
+			double dist1 = 0, dist2 = 0, volume = 0, beta1 = 0, beta2 = 0, y1 = 0, y2 = 0;
+		};
+
+		// The whole meniscus for neck position xn, neck radius yn, pressure P and gap a (sphere 1 of
+		// radius 1 left of the gap, sphere 2 of radius R2 right of it; scaled by R1).
+		Shot shoot(double xn, double yn, double P, double a, double R2, double t1, double t2)
 		{
-			std::array<double, 2> r;
+			Shot       out;
+			const Half right = half(xn, yn, P, std::isinf(R2) ? a / 2 : a / 2 + R2, R2, t2);
+			if (!right.ok) return out;
+			const Half left = half(-xn, yn, P, a / 2 + 1, 1, t1);
+			if (!left.ok) return out;
+			out.ok         = true;
+			out.dist1      = left.distance;
+			out.dist2      = right.distance;
+			out.volume     = left.W + right.W - left.cap - right.cap;
+			out.beta1      = left.beta;
+			out.beta2      = right.beta;
+			out.y1         = left.y_end;
+			out.y2         = right.y_end;
+			return out;
+		}
+
+		// Damped Newton with a finite-difference Jacobian. `res` returns false where the residual
+		// cannot be evaluated (no bridge for these values); the line search stays out of there.
+		template <size_t N, class F> bool newton(std::array<double, N>& u, const std::array<double, N>& scale, F res)
+		{
+			std::array<double, N> r;
+			auto                  norm = [](const std::array<double, N>& v) {
+                double s = 0;
+                for (double x : v) s += x * x;
+                return std::sqrt(s);
+			};
 			if (!res(u, r)) return false;
 			for (int it = 0; it < 60; ++it) {
-				const double norm = std::hypot(r[0], r[1]);
-				if (norm < 1e-12) return true;
-				double J[2][2];
-				for (int j = 0; j < 2; ++j) {
-					std::array<double, 2> up = u, rp;
-					const double          du = 1e-7 * scale[j];
+				if (norm(r) < 1e-12) return true;
+				double J[N][N + 1];
+				for (size_t j = 0; j < N; ++j) {
+					std::array<double, N> up = u, rp;
+					double                du = 1e-7 * scale[j];
 					up[j] += du;
 					if (!res(up, rp)) {
-						up[j] -= 2 * du;
+						du = -du, up[j] = u[j] + du;
 						if (!res(up, rp)) return false;
-						J[0][j] = (r[0] - rp[0]) / du, J[1][j] = (r[1] - rp[1]) / du;
-					} else J[0][j] = (rp[0] - r[0]) / du, J[1][j] = (rp[1] - r[1]) / du;
+					}
+					for (size_t i = 0; i < N; ++i) J[i][j] = (rp[i] - r[i]) / du;
 				}
-				const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-				if (!(std::abs(det) > 0)) return false;
-				const double d0 = -(J[1][1] * r[0] - J[0][1] * r[1]) / det, d1 = -(-J[1][0] * r[0] + J[0][0] * r[1]) / det;
-				bool         improved = false;
+				for (size_t i = 0; i < N; ++i) J[i][N] = -r[i];
+				for (size_t c = 0; c < N; ++c) { // Gaussian elimination with partial pivoting
+					size_t p = c;
+					for (size_t i = c + 1; i < N; ++i)
+						if (std::abs(J[i][c]) > std::abs(J[p][c])) p = i;
+					if (!(std::abs(J[p][c]) > 0)) return false;
+					for (size_t k = 0; k <= N; ++k) std::swap(J[c][k], J[p][k]);
+					for (size_t i = 0; i < N; ++i)
+						if (i != c) {
+							const double f = J[i][c] / J[c][c];
+							for (size_t k = c; k <= N; ++k) J[i][k] -= f * J[c][k];
+						}
+				}
+				bool improved = false;
 				for (double lambda = 1; lambda > 1e-6; lambda /= 2) {
-					std::array<double, 2> un = { u[0] + lambda * d0, u[1] + lambda * d1 }, rn;
-					if (res(un, rn) && std::hypot(rn[0], rn[1]) < norm) {
+					std::array<double, N> un = u, rn;
+					for (size_t i = 0; i < N; ++i) un[i] += lambda * J[i][N] / J[i][i];
+					if (res(un, rn) && norm(rn) < norm(r)) {
 						u = un, r = rn, improved = true;
 						break;
 					}
 				}
-				if (!improved) return norm < 1e-9;
+				if (!improved) return norm(r) < 1e-9;
 			}
-			return std::hypot(r[0], r[1]) < 1e-9;
+			return norm(r) < 1e-9;
 		}
 
 	} // namespace
@@ -186,83 +214,84 @@ namespace yl {
 			if (!(t >= 0 && t < pi / 2)) throw std::invalid_argument("theta = " + std::to_string(t) + " rad is outside the allowed range [0, pi/2)");
 		R1_ = R1, R2_ = R2 / R1, V_ = volume / (R1 * R1 * R1), t1_ = theta1, t2_ = theta2;
 
-		// Contact (a = 0): unknowns beta1, P. Guess from the thin-film volume pi rho^4 / (2 Rh).
-		const double Rh   = std::isinf(R2_) ? 2 : 2 * R2_ / (1 + R2_);
-		const double rho  = std::pow(2 * V_ * Rh / pi, 0.25);
-		const double b1   = std::asin(std::min(0.9, rho));
-		const double gap  = rho * rho / Rh;
-		const double rm   = gap / (std::cos(b1 + t1_) + std::cos(std::asin(std::min(0.9, rho / (std::isinf(R2_) ? 1e300 : R2_))) + t2_));
-		const double rneck = std::max(0.5 * rho, rho - rm * (1 - std::sin(b1 + t1_)));
-		std::array<double, 2> u = { b1, 1 / rneck - 1 / rm };
-		auto at_contact = [&](const std::array<double, 2>& v, std::array<double, 2>& r) {
-			if (!(v[0] > 0 && v[0] < pi / 2)) return false;
-			const Shot s = shoot(v[0], v[1], 0, R2_, t1_, t2_);
+		// Contact (a = 0): unknowns xn, yn, P. Guess: thin-film volume pi rho^4 / (2 Rh) for the
+		// contact-line radius rho, and a toroidal meniscus for the neck and the pressure.
+		const double Rh    = std::isinf(R2_) ? 2 : 2 * R2_ / (1 + R2_);
+		const double rho   = std::min(0.9, std::pow(2 * V_ * Rh / pi, 0.25));
+		const double b1    = std::asin(rho), b2 = std::isinf(R2_) ? 0 : std::asin(std::min(0.9, rho / R2_));
+		const double rm    = rho * rho / Rh / (std::cos(b1 + t1_) + std::cos(b2 + t2_));
+		L_                 = rho * rho / Rh; // gap scale of the bridge: residual distances are measured in it
+		const double yn0   = std::max(0.5 * rho, rho - rm * (1 - std::sin(b1 + t1_)));
+		std::array<double, 3> u = { 0, yn0, 1 / yn0 - 1 / rm };
+		auto at_contact = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
+			const Shot s = shoot(v[0], v[1], v[2], 0, R2_, t1_, t2_);
 			if (!s.ok) return false;
-			r = { s.angle_residual, s.volume / V_ - 1 };
+			r = { s.dist1 / L_, s.dist2 / L_, s.volume / V_ - 1 };
 			return true;
 		};
-		if (!newton2(u, { b1, std::max(1.0, std::abs(u[1])) }, at_contact))
+		if (!newton(u, { yn0, yn0, std::max(1.0, std::abs(u[2])) }, at_contact))
 			throw std::runtime_error("Young-Laplace: no pendular bridge at contact for V* = V/R1^3 = " + std::to_string(V_) + ", theta = "
 			                         + std::to_string(theta1) + " rad");
-		branch_.push_back({ u[0], u[1], 0 });
+		branch_.push_back({ u[1], u[0], u[2], 0 });
 
-		// Continuation in beta1 towards smaller filling angles: the gap grows to a maximum (the fold,
-		// rupture) and decreases on the unstable branch beyond it.
-		double dbeta = 0.02 * branch_[0].beta1;
+		// Continuation towards smaller necks: the gap grows to a maximum (the fold: rupture) and
+		// decreases on the unstable branch beyond it.
+		const double y0    = branch_[0].yn;
+		double       dy    = 0.02 * y0;
 		while (true) {
-			const Point& last = branch_.back();
+			const Point& last  = branch_.back();
 			Point        guess = last;
 			if (branch_.size() > 1) {
 				const Point& prev = branch_[branch_.size() - 2];
-				const double f    = dbeta / (prev.beta1 - last.beta1);
-				guess.P += f * (last.P - prev.P), guess.a += f * (last.a - prev.a);
+				const double f    = dy / (prev.yn - last.yn);
+				guess.xn += f * (last.xn - prev.xn), guess.P += f * (last.P - prev.P), guess.a += f * (last.a - prev.a);
 			}
-			guess.beta1 = last.beta1 - dbeta;
 			Point next;
 			try {
-				next = solve_at_beta(guess.beta1, guess);
+				next = solve_at_neck(last.yn - dy, guess);
 			} catch (const std::runtime_error&) {
-				dbeta /= 2;
-				if (dbeta < 1e-9 * branch_[0].beta1) throw;
+				dy /= 2;
+				if (dy < 1e-9 * y0) throw;
 				continue;
 			}
-			if (next.a < last.a) { // passed the fold: maximise a(beta1) between the last two points and next
-				double lo = next.beta1, hi = branch_.size() > 1 ? branch_[branch_.size() - 2].beta1 : last.beta1;
+			if (next.a < last.a) { // passed the fold: maximise a(yn) between the point before last and next
+				double       lo = next.yn, hi = branch_.size() > 1 ? branch_[branch_.size() - 2].yn : last.yn;
 				const double gr = (std::sqrt(5.0) - 1) / 2;
-				Point        m1 = solve_at_beta(hi - gr * (hi - lo), last), m2 = solve_at_beta(lo + gr * (hi - lo), last);
-				while (hi - lo > 1e-9 * branch_[0].beta1) {
+				Point        m1 = solve_at_neck(hi - gr * (hi - lo), last), m2 = solve_at_neck(lo + gr * (hi - lo), last);
+				while (hi - lo > 1e-10 * y0) {
 					if (m1.a > m2.a) {
-						lo = m2.beta1, m2 = m1;
-						m1 = solve_at_beta(hi - gr * (hi - lo), m2);
+						lo = m2.yn, m2 = m1;
+						m1 = solve_at_neck(hi - gr * (hi - lo), m2);
 					} else {
-						hi = m1.beta1, m1 = m2;
-						m2 = solve_at_beta(lo + gr * (hi - lo), m1);
+						hi = m1.yn, m1 = m2;
+						m2 = solve_at_neck(lo + gr * (hi - lo), m1);
 					}
 				}
 				const Point top = m1.a > m2.a ? m1 : m2;
-				while (branch_.size() > 1 && branch_.back().beta1 <= top.beta1) branch_.pop_back();
+				while (branch_.size() > 1 && branch_.back().yn <= top.yn) branch_.pop_back();
 				branch_.push_back(top);
 				break;
 			}
 			branch_.push_back(next);
-			dbeta = std::min(dbeta * 1.5, 0.05 * branch_[0].beta1);
+			dy = std::min(dy * 1.5, 0.05 * y0);
+			if (next.yn - dy <= 0.02 * y0) dy = 0.5 * (next.yn - 0.02 * y0);
 		}
 		rupture_ = branch_.back().a * R1_;
 	}
 
-	Bridge::Point Bridge::solve_at_beta(double beta1, const Point& guess) const
+	Bridge::Point Bridge::solve_at_neck(double yn, const Point& guess) const
 	{
-		std::array<double, 2> u = { guess.P, guess.a };
-		auto res = [&](const std::array<double, 2>& v, std::array<double, 2>& r) {
-			if (!(v[1] > -0.5)) return false;
-			const Shot s = shoot(beta1, v[0], v[1], R2_, t1_, t2_);
+		std::array<double, 3> u = { guess.xn, guess.P, guess.a };
+		auto res = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
+			if (!(v[2] > -0.5)) return false;
+			const Shot s = shoot(v[0], yn, v[1], v[2], R2_, t1_, t2_);
 			if (!s.ok) return false;
-			r = { s.angle_residual, s.volume / V_ - 1 };
+			r = { s.dist1 / L_, s.dist2 / L_, s.volume / V_ - 1 };
 			return true;
 		};
-		if (!newton2(u, { std::max(1.0, std::abs(guess.P)), std::max(1e-3, std::abs(guess.a)) }, res))
-			throw std::runtime_error("Young-Laplace: no converged bridge at filling angle " + std::to_string(beta1));
-		return { beta1, u[0], u[1] };
+		if (!newton(u, { yn, std::max(1.0, std::abs(guess.P)), std::max(yn * yn, std::abs(guess.a)) }, res))
+			throw std::runtime_error("Young-Laplace: no converged bridge at neck radius " + std::to_string(yn));
+		return { yn, u[0], u[1], u[2] };
 	}
 
 	Solution Bridge::solve(double gap, double gamma) const
@@ -272,26 +301,25 @@ namespace yl {
 			throw std::invalid_argument("gap = " + std::to_string(gap) + " m is outside the allowed range [0, rupture gap = " + std::to_string(rupture_)
 			                            + " m]");
 		if (!(gamma > 0)) throw std::invalid_argument("gamma = " + std::to_string(gamma) + " N/m is outside the allowed range (0, inf)");
-		// Bracket on the stable branch, then solve a(beta1) = a by the Illinois method in beta1; each
-		// a(beta1) is a well-conditioned solve even at the fold.
+		// Bracket on the stable branch, then solve a(yn) = a by the Illinois method in the neck
+		// radius; each a(yn) is a well-conditioned solve, also at the fold.
 		size_t k = 0;
 		while (k + 1 < branch_.size() && branch_[k + 1].a < a) ++k;
 		Point p;
 		if (a <= branch_[k].a) p = branch_[k];
 		else if (k + 1 == branch_.size() || a >= branch_[k + 1].a) p = branch_[std::min(k + 1, branch_.size() - 1)];
 		else {
-			Point lo = branch_[k], hi = branch_[k + 1];
-			int   side = 0;
+			Point  lo = branch_[k], hi = branch_[k + 1];
+			int    side = 0;
 			double flo = lo.a - a, fhi = hi.a - a;
-			p = lo;
 			for (int it = 0; it < 200; ++it) {
-				const double b = (lo.beta1 * fhi - hi.beta1 * flo) / (fhi - flo);
+				const double y = (lo.yn * fhi - hi.yn * flo) / (fhi - flo);
 				Point        g = lo;
-				const double f = (b - lo.beta1) / (hi.beta1 - lo.beta1);
-				g.P += f * (hi.P - lo.P), g.a += f * (hi.a - lo.a);
-				p                = solve_at_beta(b, g);
-				const double fp  = p.a - a;
-				if (std::abs(fp) < 1e-14 * (1 + a) || std::abs(hi.beta1 - lo.beta1) < 1e-15) break;
+				const double f = (y - lo.yn) / (hi.yn - lo.yn);
+				g.xn += f * (hi.xn - lo.xn), g.P += f * (hi.P - lo.P), g.a += f * (hi.a - lo.a);
+				p               = solve_at_neck(y, g);
+				const double fp = p.a - a;
+				if (std::abs(fp) < 1e-14 * (1 + a) || std::abs(hi.yn - lo.yn) < 1e-15) break;
 				if ((fp > 0) == (flo > 0)) {
 					lo = p, flo = fp;
 					if (side == -1) fhi /= 2;
@@ -303,19 +331,19 @@ namespace yl {
 				}
 			}
 		}
-		const Shot s = shoot(p.beta1, p.P, p.a, R2_, t1_, t2_);
-		Solution   out;
-		const double y1  = std::sin(p.beta1), phi1 = p.beta1 + t1_ - pi / 2;
-		out.gap           = p.a * R1_;
-		out.beta1         = p.beta1;
-		out.beta2         = s.beta2;
-		out.contact_radius1 = y1 * R1_;
-		out.contact_radius2 = s.y_end * R1_;
-		out.neck_radius   = s.neck_y * R1_;
-		out.pressure      = gamma * p.P / R1_;
-		out.force_neck    = pi * gamma * R1_ * (2 * s.neck_y * std::cos(s.neck_phi) - p.P * s.neck_y * s.neck_y);
-		out.force_contact = pi * gamma * R1_ * (2 * y1 * std::cos(phi1) - p.P * y1 * y1);
-		out.volume        = s.volume * R1_ * R1_ * R1_;
+		const Shot   s = shoot(p.xn, p.yn, p.P, p.a, R2_, t1_, t2_);
+		Solution     out;
+		const double y1 = s.y1, phi1 = s.beta1 + t1_ - pi / 2;
+		out.gap             = p.a * R1_;
+		out.beta1           = s.beta1;
+		out.beta2           = s.beta2;
+		out.contact_radius1 = s.y1 * R1_;
+		out.contact_radius2 = s.y2 * R1_;
+		out.neck_radius     = p.yn * R1_;
+		out.pressure        = gamma * p.P / R1_;
+		out.force_neck      = pi * gamma * R1_ * (2 * p.yn - p.P * p.yn * p.yn);
+		out.force_contact   = pi * gamma * R1_ * (2 * y1 * std::cos(phi1) - p.P * y1 * y1);
+		out.volume          = s.volume * R1_ * R1_ * R1_;
 		return out;
 	}
 

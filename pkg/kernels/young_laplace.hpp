@@ -1,7 +1,7 @@
 // Exact pendular liquid bridge of fixed volume between two spheres (or a sphere and a plane),
 // zero gravity: the axisymmetric meniscus of constant mean curvature (Young-Laplace equation),
-// solved by shooting on the filling angle and the pressure, with continuation along the branch
-// of solutions. This is the reference the closed-form models were fitted to (Lian 1993,
+// solved by shooting from the neck towards both solids (unknowns: neck position, neck radius,
+// pressure), with continuation along the branch of solutions. This is the reference the closed-form models were fitted to (Lian 1993,
 // Willett 2000); no DEM code offers it at run time. SI units, radians.
 //
 // Profile in arc length s, rotating about the line of centres (x axis):
@@ -28,8 +28,8 @@ namespace yl {
 	};
 
 	// One bridge: the geometry is fixed, the gap varies. The constructor follows the branch of
-	// solutions from contact (a = 0) by continuation in the filling angle and finds the largest
-	// gap with a stable bridge (the fold of the branch: the true rupture distance).
+	// solutions from contact (a = 0) by continuation in the neck radius and finds the largest gap
+	// with a stable bridge (the fold of the branch: the true rupture distance).
 	class Bridge {
 	public:
 		// R2 = infinity: sphere-plane. theta2 < 0: equal to theta1. Throws std::invalid_argument for
@@ -42,10 +42,11 @@ namespace yl {
 
 	private:
 		struct Point {
-			double beta1, P, a; // dimensionless (lengths / R1)
+			double yn, xn, P, a; // neck radius and position, pressure / gamma, gap; scaled by R1
 		};
-		Point solve_at_beta(double beta1, const Point& guess) const; // unknowns P, a
+		Point solve_at_neck(double yn, const Point& guess) const; // unknowns xn, P, a
 		double R1_, R2_, V_, t1_, t2_; // R2_, V_ dimensionless (/R1, /R1^3)
+		double L_;                     // length scale of the shooting residuals (scaled by R1)
 		double rupture_;               // [m]
 		std::vector<Point> branch_;    // stable branch, from contact to rupture (a increasing)
 	};
