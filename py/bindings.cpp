@@ -2,6 +2,7 @@
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
 #include "young_laplace.hpp"
+#include "young_laplace_table.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -133,8 +134,8 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 	                       "(R2 = inf: sphere-plane), volume [m^3], contact angles theta1, theta2 [rad] (theta2 < 0: equal to "
 	                       "theta1). The constructor follows the branch of solutions from contact to its fold, the true rupture "
 	                       "gap. Raises ValueError for bad input and RuntimeError if no bridge exists.")
-	        .def(py::init<double, double, double, double, double>(), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta1") = 0.0,
-	             py::arg("theta2") = -1.0)
+	        .def(py::init<double, double, double, double, double, double>(), py::arg("R1"), py::arg("R2"), py::arg("volume"),
+	             py::arg("theta1") = 0.0, py::arg("theta2") = -1.0, py::arg("tolerance") = 1e-12)
 	        .def_property_readonly("rupture_gap", &yl::Bridge::rupture_gap, "Largest gap with a stable bridge [m].")
 	        .def(
 	                "solve",
@@ -150,6 +151,18 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 	                "Stable bridge at gap [m] in [0, rupture_gap], surface tension gamma [N/m]: dict with gap [m], beta1, beta2 "
 	                "(filling angles) [rad], contact_radius1/2 [m], neck_radius [m], pressure (p_liquid - p_gas) [Pa], "
 	                "force_neck and force_contact (attraction by the neck and contact-line methods) [N], volume [m^3].");
+
+	m.def("table_axes", [] {
+		py::dict d;
+		py::list lnv, theta, rho, w;
+		for (int i = 0; i < yltable::n_lnv; ++i) lnv.append(yltable::lnv_node(i));
+		for (int i = 0; i < yltable::n_theta; ++i) theta.append(yltable::theta_node(i));
+		for (double r : yltable::rho_nodes) rho.append(r);
+		for (int i = 0; i < yltable::n_w; ++i) w.append(yltable::w_node(i));
+		d["ln_vstar"] = lnv, d["theta"] = theta, d["rho"] = rho, d["w"] = w;
+		return d;
+	}, "Nodes of the young_laplace_table model: ln_vstar (V* = V/Rh^3), theta [rad], rho = R_small/R_large (0: plane), "
+	   "w = sqrt(1 - a/a_rupture).");
 
 	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
 	      "Willett's f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3 [-] and theta [rad].");

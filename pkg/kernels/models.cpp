@@ -1,6 +1,8 @@
 // Capillary bridge models. Conventions and traps: ../shared/notes/capillary-models.md.
 #include "models.hpp"
 
+#include "young_laplace_table.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -21,6 +23,7 @@ const std::vector<ModelInfo> model_table = {
 	{ Model::richefeu, "richefeu", "Richefeu2008 eq. (4), (5), (10), (11)", true },
 	{ Model::soulie, "soulie", "Soulie2006 (coefficients as printed there)", true },
 	{ Model::linear_irreversible, "linear_irreversible", "Roy eq. (16), (17), section 4.2", true },
+	{ Model::young_laplace_table, "young_laplace_table", "Young-Laplace solver, tabulated (data/young_laplace_table.csv)", true },
 };
 const std::vector<RuptureInfo> rupture_table = {
 	{ Rupture::lian, "lian", "Richefeu2008 eq. (6)" },
@@ -109,6 +112,9 @@ double soulie(const Bridge& b, double a) { return b.k[3] * (b.k[2] + std::exp(b.
 // Linear irreversible: k = {f_max, k_c}.
 double linear_irreversible(const Bridge& b, double a) { return std::max(0.0, b.k[0] - b.k[1] * a); } // Roy (16)
 
+// Young-Laplace table: k = {1/rupture, F at the w nodes}.
+double young_laplace_table(const Bridge& b, double a) { return yltable::force(&b.k[1], b.k[0], a); }
+
 double evaluate(const Bridge& b, double a)
 {
 	switch (b.model) {
@@ -120,6 +126,7 @@ double evaluate(const Bridge& b, double a)
 		case Model::richefeu: return richefeu(b, a);
 		case Model::soulie: return soulie(b, a);
 		case Model::linear_irreversible: return linear_irreversible(b, a);
+		case Model::young_laplace_table: return young_laplace_table(b, a);
 	}
 	return 0;
 }
@@ -315,6 +322,16 @@ Bridge make_bridge(const BridgeSpec& s)
 			b.k[1]    = kc;
 			b.rupture = fmax / kc; // Roy eq. (17): the model defines its own interaction range
 			b.force0  = fmax;
+			return b;
+		}
+	}
+		case Model::young_laplace_table: {
+			// The exact rupture distance of the solver, whatever the rupture rule.
+			const yltable::Curve c = yltable::curve(s.R1, s.R2, s.volume, s.gamma, s.theta1, s.theta2);
+			b.k[0]    = 1 / c.rupture;
+			std::copy(c.force.begin(), c.force.end(), b.k.begin() + 1);
+			b.rupture = c.rupture;
+			b.force0  = c.force[yltable::n_w - 1];
 			return b;
 		}
 	}

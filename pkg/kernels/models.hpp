@@ -24,7 +24,8 @@ enum class Model {
 	rabinovich_lambert,  // Gladkyy2014 eq. (9), (10), (12); Lambert et al. 2008
 	richefeu,            // Richefeu2008 eq. (4), (5), (7), (10), (11)
 	soulie,              // Soulie et al. 2006 (coefficients as printed there, see models.cpp)
-	linear_irreversible  // Roy et al. eq. (16), (17), calibration of their section 4.2
+	linear_irreversible, // Roy et al. eq. (16), (17), calibration of their section 4.2
+	young_laplace_table  // exact Young-Laplace bridge, tabulated (young_laplace_table.hpp)
 };
 
 enum class Rupture {
@@ -82,7 +83,7 @@ struct Bridge {
 	double volume;    // [m^3]
 	double rupture;   // [m] gap at which the bridge breaks
 	double force0;    // [N] force at contact, F(a = 0)
-	std::array<double, 6> k; // model-specific invariants, documented in models.cpp
+	std::array<double, 18> k; // model-specific invariants, documented in models.cpp
 };
 
 // Validates (std::invalid_argument naming the parameter and its allowed range) and computes the

@@ -55,31 +55,51 @@ namespace yl {
 			return y5;
 		}
 
-		// Half of a meniscus: from its neck (x0, y0), where the profile is parallel to the axis, towards
-		// +x until the profile direction is the one that the contact angle theta requires on the
-		// sphere of centre c and radius R (R = inf: the plane x = c), seen from that point. The
-		// residual is the signed distance of that point from the solid: zero for a bridge. (Stopping
-		// where the profile meets the solid instead is singular for theta = 0, where the meniscus
-		// touches the sphere tangentially.) The left half is computed in the mirror image x -> -x.
-		struct Half {
+		// One arc of the meniscus: from a contact line (x0, y0, phi0) towards +x up to the matching
+		// plane x = xm (halfway between the contact lines), where the profile of the other solid (integrated in the mirror image x -> -x)
+		// must continue it. Both arcs start on their contact line with the angle the contact angle
+		// prescribes, so the contact conditions hold by construction: no end condition is singular,
+		// including theta = 0, where the meniscus is tangent to the sphere. x increases monotonically
+		// along a pendular meniscus (|phi| < pi/2).
+		struct Arc {
 			bool   ok = false;
-			double distance = 0; // signed distance of the contact point from the solid surface
-			double W = 0;        // integral of pi y^2 dx from the neck to the contact line
-			double cap = 0;      // volume of the sphere cap beyond the contact line
-			double beta = 0;     // filling angle on that sphere
-			double y_end = 0;
+			double y = 0, phi = 0, W = 0;    // at the matching plane; W = integral of pi y^2 dx
+			double neck_y = 0, neck_phi = 0; // narrowest section of the arc
 		};
 
-		Half half(double x0, double y0, double P, double c, double R, double theta)
+		Arc arc(double x0, double y0, double phi0, double xm, double P, double tol)
 		{
-			const double tol   = 1e-12;
-			const bool   plane = std::isinf(R);
-			auto         beta  = [&](const State& q) { return plane ? 0.0 : std::atan2(q[1], c - q[0]); };
-			auto         angle = [&](const State& q) { return q[2] - (pi / 2 - beta(q) - theta); };
-			Half         out;
-			State        s = { x0, y0, 0, 0 };
-			if (!(y0 > 0) || angle(s) >= 0) return out;
-			double h = 0.01 * y0, length = 0;
+			Arc   out;
+			State s = { x0, y0, phi0, 0 };
+			if (!(y0 > 0) || !(std::abs(phi0) <= pi / 2) || x0 > xm) return out; // vertical start: theta = 0 on a plane
+			out.neck_y = y0, out.neck_phi = phi0;
+			auto refine = [&](const State& from, const State& to, double step, auto fn) { // Illinois method on the step length
+				double lo = 0, hi = step, flo = fn(from), fhi = fn(to), e;
+				int    side = 0;
+				State  m    = to;
+				for (int it = 0; it < 100 && hi - lo > 1e-16 * (1 + hi); ++it) {
+					const double mid = (lo * fhi - hi * flo) / (fhi - flo);
+					m                = dopri_step(from, P, mid, e);
+					const double fm  = fn(m);
+					if (fm == 0) break;
+					if ((fm > 0) == (flo > 0)) {
+						lo = mid, flo = fm;
+						if (side == -1) fhi /= 2;
+						side = -1;
+					} else {
+						hi = mid, fhi = fm;
+						if (side == 1) flo /= 2;
+						side = 1;
+					}
+				}
+				return m;
+			};
+			auto   at_plane = [&](const State& q) { return q[0] - xm; };
+			double h        = 0.01 * y0, length = 0;
+			if (x0 == xm) {
+				out.ok = true, out.y = y0, out.phi = phi0;
+				return out;
+			}
 			for (int step = 0; step < 100000 && length < 100; ++step) {
 				double      err;
 				const State n = dopri_step(s, P, h, err);
@@ -88,37 +108,19 @@ namespace yl {
 					if (h < 1e-15) return out;
 					continue;
 				}
-				if (angle(n) >= 0) { // find the step h* in (0, h] that lands on the contact condition (Illinois method)
-					double lo = 0, hi = h, flo = angle(s), fhi = angle(n), e;
-					int    side = 0;
-					State  m     = n;
-					for (int it = 0; it < 100 && hi - lo > 1e-16 * (1 + hi); ++it) {
-						const double mid = (lo * fhi - hi * flo) / (fhi - flo);
-						m                = dopri_step(s, P, mid, e);
-						const double fm  = angle(m);
-						if (fm == 0) break;
-						if ((fm > 0) == (flo > 0)) {
-							lo = mid, flo = fm;
-							if (side == -1) fhi /= 2;
-							side = -1;
-						} else {
-							hi = mid, fhi = fm;
-							if (side == 1) flo /= 2;
-							side = 1;
-						}
-					}
-					out.y_end    = m[1];
-					out.W        = m[3];
-					out.beta     = beta(m);
-					out.distance = plane ? c - m[0] : std::hypot(m[0] - c, m[1]) - R;
-					if (!plane) {
-						const double hc = 2 * R * std::pow(std::sin(out.beta / 2), 2); // R (1 - cos beta)
-						out.cap         = pi * hc * hc * (3 * R - hc) / 3;
-					}
-					out.ok = std::isfinite(out.W) && out.beta >= 0;
+				const bool  done = at_plane(n) >= 0;
+				const State e    = done ? refine(s, n, h, at_plane) : n;
+				if (s[2] < 0 && e[2] >= 0) { // interior neck
+					const State m = refine(s, e, done ? h : h, [](const State& q) { return q[2]; });
+					if (m[1] < out.neck_y) out.neck_y = m[1], out.neck_phi = m[2];
+				}
+				if (e[1] < out.neck_y && (done || e[2] == 0)) out.neck_y = e[1], out.neck_phi = e[2];
+				if (done) {
+					out.y = e[1], out.phi = e[2], out.W = e[3];
+					out.ok = std::abs(e[2]) < pi / 2 && e[1] > 0;
 					return out;
 				}
-				if (std::abs(n[2]) > pi) return out; // the profile turned back: not a pendular bridge
+				if (!(std::abs(n[2]) < pi / 2)) return out; // vertical tangent: not a pendular meniscus
 				length += h;
 				s = n;
 				h *= std::min(5.0, 0.9 * std::pow(tol / std::max(err, 1e-300), 0.2));
@@ -128,26 +130,39 @@ namespace yl {
 
 		struct Shot {
 			bool   ok = false;
-			double dist1 = 0, dist2 = 0, volume = 0, beta1 = 0, beta2 = 0, y1 = 0, y2 = 0;
+			double dy = 0, dphi = 0; // mismatch of the two arcs at the matching plane (dy in units of L)
+			double volume = 0;       // liquid volume: both arcs minus the two sphere caps
+			double neck_y = 0, neck_phi = 0;
+			double y2 = 0;           // contact-line radius on solid 2
 		};
 
-		// The whole meniscus for neck position xn, neck radius yn, pressure P and gap a (sphere 1 of
-		// radius 1 left of the gap, sphere 2 of radius R2 right of it; scaled by R1).
-		Shot shoot(double xn, double yn, double P, double a, double R2, double t1, double t2)
+		// Sphere 1 (radius 1) left of the gap a with filling angle beta1; solid 2 right of it: a sphere
+		// of radius R2 with filling angle s2, or (R2 = inf) a plane with contact-line radius s2.
+		Shot shoot(double beta1, double s2, double P, double a, double R2, double t1, double t2, double tol, double L)
 		{
-			Shot       out;
-			const Half right = half(xn, yn, P, std::isinf(R2) ? a / 2 : a / 2 + R2, R2, t2);
-			if (!right.ok) return out;
-			const Half left = half(-xn, yn, P, a / 2 + 1, 1, t1);
+			Shot         out;
+			const bool   plane = std::isinf(R2);
+			const double h1    = 2 * std::pow(std::sin(beta1 / 2), 2); // 1 - cos(beta1)
+			double       h2 = 0, y2, phi2, cap2 = 0;
+			if (plane) y2 = s2, phi2 = t2 - pi / 2;
+			else {
+				h2 = 2 * R2 * std::pow(std::sin(s2 / 2), 2);
+				y2 = R2 * std::sin(s2), phi2 = s2 + t2 - pi / 2;
+				cap2 = pi * h2 * h2 * (3 * R2 - h2) / 3;
+			}
+			// Matching plane halfway between the contact lines, where the profile is far from vertical.
+			const double xm   = (h2 - h1) / 2;
+			const Arc    left = arc(-(a / 2 + h1), std::sin(beta1), beta1 + t1 - pi / 2, xm, P, tol);
 			if (!left.ok) return out;
-			out.ok         = true;
-			out.dist1      = left.distance;
-			out.dist2      = right.distance;
-			out.volume     = left.W + right.W - left.cap - right.cap;
-			out.beta1      = left.beta;
-			out.beta2      = right.beta;
-			out.y1         = left.y_end;
-			out.y2         = right.y_end;
+			const Arc right = arc(-(a / 2 + h2), y2, phi2, -xm, P, tol);
+			if (!right.ok) return out;
+			out.ok       = true;
+			out.dy       = (left.y - right.y) / L;
+			out.dphi     = left.phi + right.phi; // the mirror image reverses the angle
+			out.volume   = left.W + right.W - pi * h1 * h1 * (3 - h1) / 3 - cap2;
+			const Arc& n = left.neck_y <= right.neck_y ? left : right;
+			out.neck_y = n.neck_y, out.neck_phi = n.neck_phi;
+			out.y2 = y2;
 			return out;
 		}
 
@@ -204,7 +219,8 @@ namespace yl {
 
 	} // namespace
 
-	Bridge::Bridge(double R1, double R2, double volume, double theta1, double theta2)
+	Bridge::Bridge(double R1, double R2, double volume, double theta1, double theta2, double tolerance)
+		: tol_(tolerance)
 	{
 		if (theta2 < 0) theta2 = theta1;
 		if (!(R1 > 0 && std::isfinite(R1))) throw std::invalid_argument("R1 = " + std::to_string(R1) + " m is outside the allowed range (0, inf)");
@@ -212,86 +228,134 @@ namespace yl {
 		if (!(volume > 0 && std::isfinite(volume))) throw std::invalid_argument("volume = " + std::to_string(volume) + " m^3 is outside the allowed range (0, inf)");
 		for (double t : { theta1, theta2 })
 			if (!(t >= 0 && t < pi / 2)) throw std::invalid_argument("theta = " + std::to_string(t) + " rad is outside the allowed range [0, pi/2)");
+		if (!(tolerance > 0 && tolerance < 1e-3)) throw std::invalid_argument("tolerance = " + std::to_string(tolerance) + " is outside the allowed range (0, 1e-3)");
 		R1_ = R1, R2_ = R2 / R1, V_ = volume / (R1 * R1 * R1), t1_ = theta1, t2_ = theta2;
+		const bool plane = std::isinf(R2_);
 
-		// Contact (a = 0): unknowns xn, yn, P. Guess: thin-film volume pi rho^4 / (2 Rh) for the
-		// contact-line radius rho, and a toroidal meniscus for the neck and the pressure.
-		const double Rh    = std::isinf(R2_) ? 2 : 2 * R2_ / (1 + R2_);
-		const double rho   = std::min(0.9, std::pow(2 * V_ * Rh / pi, 0.25));
-		const double b1    = std::asin(rho), b2 = std::isinf(R2_) ? 0 : std::asin(std::min(0.9, rho / R2_));
-		const double rm    = rho * rho / Rh / (std::cos(b1 + t1_) + std::cos(b2 + t2_));
-		L_                 = rho * rho / Rh; // gap scale of the bridge: residual distances are measured in it
-		const double yn0   = std::max(0.5 * rho, rho - rm * (1 - std::sin(b1 + t1_)));
-		std::array<double, 3> u = { 0, yn0, 1 / yn0 - 1 / rm };
+		// Contact (a = 0): unknowns beta1, s2, P. Guess for a small volume: thin-film volume
+		// pi rho^4 / (2 Rh) for the contact-line radius rho and a toroidal meniscus for the
+		// pressure; then continuation in the volume up to V (large bridges have no good guess).
+		const double Rh  = plane ? 2 : 2 * R2_ / (1 + R2_);
+		double       Vt  = std::min(V_, 1e-4 * Rh * Rh * Rh);
+		const double rho = std::pow(2 * Vt * Rh / pi, 0.25);
+		const double b1 = std::asin(rho), b2 = plane ? 0 : std::asin(rho / R2_);
+		const double rm  = rho * rho / Rh / (std::cos(b1 + t1_) + std::cos(b2 + t2_));
+		const double yn0 = std::max(0.5 * rho, rho - rm * (1 - std::sin(b1 + t1_)));
+		std::array<double, 3> u = { b1, plane ? rho : b2, 1 / yn0 - 1 / rm };
+		L_                      = rho; // length scale of the matching residual
 		auto at_contact = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
-			const Shot s = shoot(v[0], v[1], v[2], 0, R2_, t1_, t2_);
+			const Shot s = shoot(v[0], v[1], v[2], 0, R2_, t1_, t2_, tol_, L_);
 			if (!s.ok) return false;
-			r = { s.dist1 / L_, s.dist2 / L_, s.volume / V_ - 1 };
+			r = { s.dy, s.dphi, s.volume / Vt - 1 };
 			return true;
 		};
-		if (!newton(u, { yn0, yn0, std::max(1.0, std::abs(u[2])) }, at_contact))
-			throw std::runtime_error("Young-Laplace: no pendular bridge at contact for V* = V/R1^3 = " + std::to_string(V_) + ", theta = "
+		auto fail = [&] {
+			throw std::runtime_error("Young-Laplace: no pendular bridge at contact for V* = V/R1^3 = " + std::to_string(Vt) + ", theta = "
 			                         + std::to_string(theta1) + " rad");
-		branch_.push_back({ u[1], u[0], u[2], 0 });
-
-		// Continuation towards smaller necks: the gap grows to a maximum (the fold: rupture) and
-		// decreases on the unstable branch beyond it.
-		const double y0    = branch_[0].yn;
-		double       dy    = 0.02 * y0;
-		while (true) {
-			const Point& last  = branch_.back();
-			Point        guess = last;
-			if (branch_.size() > 1) {
-				const Point& prev = branch_[branch_.size() - 2];
-				const double f    = dy / (prev.yn - last.yn);
-				guess.xn += f * (last.xn - prev.xn), guess.P += f * (last.P - prev.P), guess.a += f * (last.a - prev.a);
+		};
+		if (!newton(u, { b1, u[1], std::max(1.0, std::abs(u[2])) }, at_contact)) fail();
+		for (double factor = 2; Vt < V_;) {
+			const std::array<double, 3> last  = u;
+			const double                Vlast = Vt, Llast = L_;
+			Vt                                = std::min(V_, Vlast * factor);
+			const double g                    = std::pow(Vt / Vlast, 0.25);
+			u                                 = { last[0] * g, last[1] * g, last[2] / (g * g) };
+			L_                                = Llast * g;
+			if (!newton(u, { u[0], u[1], std::max(1.0, std::abs(u[2])) }, at_contact)) {
+				u = last, Vt = Vlast, L_ = Llast, factor = std::sqrt(factor);
+				if (factor < 1.0001) fail();
 			}
+		}
+		branch_.push_back({ u[0], u[1], u[2], 0 });
+
+		// Pseudo-arclength continuation from contact along the branch of solutions (no coordinate
+		// need be monotone on it): the gap grows to a maximum, the fold, which is the rupture
+		// distance; beyond it the bridges are unstable.
+		beta0_ = branch_[0].beta1, Lr_ = std::cbrt(V_), Pscale_ = L_; // scales of the arclength
+		Vec  t  = { -1, 0, 0, 0 };
+		double ds = 0.02;
+		auto unit = [](const Vec& from, const Vec& to, double& length) {
+			Vec c;
+			for (int i = 0; i < 4; ++i) c[i] = to[i] - from[i];
+			length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3]);
+			for (double& x : c) x /= length;
+			return c;
+		};
+		while (true) {
+			const Point& last = branch_.back();
+			double       d    = 0;
+			if (branch_.size() > 1) t = unit(scaled(branch_[branch_.size() - 2]), scaled(last), d);
 			Point next;
-			try {
-				next = solve_at_neck(last.yn - dy, guess);
-			} catch (const std::runtime_error&) {
-				dy /= 2;
-				if (dy < 1e-9 * y0) throw;
+			if (!on_arc(last, t, ds, last, next)) {
+				ds /= 2;
+				if (ds < 1e-8) throw std::runtime_error("Young-Laplace: continuation stalled at filling angle " + std::to_string(last.beta1));
 				continue;
 			}
-			if (next.a < last.a) { // passed the fold: maximise a(yn) between the point before last and next
-				double       lo = next.yn, hi = branch_.size() > 1 ? branch_[branch_.size() - 2].yn : last.yn;
+			double     step;
+			const Vec  c = unit(scaled(last), scaled(next), step);
+			if (branch_.size() > 1 && ds > 1e-6 && c[0] * t[0] + c[1] * t[1] + c[2] * t[2] + c[3] * t[3] < 0.9) {
+				ds /= 2; // a sharp turn means a jump to another branch: smaller steps
+				continue;
+			}
+			if (next.a < last.a && ds > 1e-3) { // passed the fold: approach it with smaller steps first
+				ds /= 4;
+				continue;
+			}
+			if (next.a < last.a) {
+				// Just past the fold: maximise a along the arc between the point before last and next,
+				// by golden section on the arclength; the corrector stays regular at the fold.
+				const Point& before = branch_.size() > 1 ? branch_[branch_.size() - 2] : last;
+				double       lo = -d, hi = ds;
 				const double gr = (std::sqrt(5.0) - 1) / 2;
-				Point        m1 = solve_at_neck(hi - gr * (hi - lo), last), m2 = solve_at_neck(lo + gr * (hi - lo), last);
-				while (hi - lo > 1e-10 * y0) {
+				auto at = [&](double sa) {
+					Point p;
+					if (!on_arc(last, t, sa, last, p) && !on_arc(last, t, sa, sa > 0 ? next : before, p))
+						throw std::runtime_error("Young-Laplace: no bridge near the fold at filling angle " + std::to_string(last.beta1));
+					return p;
+				};
+				double s1 = hi - gr * (hi - lo), s2 = lo + gr * (hi - lo);
+				Point  m1 = at(s1), m2 = at(s2);
+				while (hi - lo > 1e-9) {
 					if (m1.a > m2.a) {
-						lo = m2.yn, m2 = m1;
-						m1 = solve_at_neck(hi - gr * (hi - lo), m2);
+						hi = s2, s2 = s1, m2 = m1;
+						s1 = hi - gr * (hi - lo), m1 = at(s1);
 					} else {
-						hi = m1.yn, m1 = m2;
-						m2 = solve_at_neck(lo + gr * (hi - lo), m1);
+						lo = s1, s1 = s2, m1 = m2;
+						s2 = lo + gr * (hi - lo), m2 = at(s2);
 					}
 				}
 				const Point top = m1.a > m2.a ? m1 : m2;
-				while (branch_.size() > 1 && branch_.back().yn <= top.yn) branch_.pop_back();
+				while (branch_.size() > 1 && branch_.back().a >= top.a) branch_.pop_back();
 				branch_.push_back(top);
 				break;
 			}
 			branch_.push_back(next);
-			dy = std::min(dy * 1.5, 0.05 * y0);
-			if (next.yn - dy <= 0.02 * y0) dy = 0.5 * (next.yn - 0.02 * y0);
+			ds = std::min(ds * 1.5, 0.05);
 		}
 		rupture_ = branch_.back().a * R1_;
 	}
 
-	Bridge::Point Bridge::solve_at_neck(double yn, const Point& guess) const
+	Bridge::Vec Bridge::scaled(const Point& p) const { return { p.beta1 / beta0_, p.s2 / beta0_, p.P * Pscale_, p.a / Lr_ }; }
+
+	bool Bridge::on_arc(const Point& base, const Vec& t, double step, const Point& guess, Point& out) const
 	{
-		std::array<double, 3> u = { guess.xn, guess.P, guess.a };
-		auto res = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
-			if (!(v[2] > -0.5)) return false;
-			const Shot s = shoot(v[0], yn, v[1], v[2], R2_, t1_, t2_);
+		const Vec z0 = scaled(base);
+		Vec       zp;
+		for (int i = 0; i < 4; ++i) zp[i] = z0[i] + step * t[i];
+		// Start from the predictor, except for the coordinates a fallback guess sets apart from base.
+		std::array<double, 4> v = { zp[0] * beta0_, zp[1] * beta0_, zp[2] / Pscale_, zp[3] * Lr_ };
+		if (guess.beta1 != base.beta1) v = { guess.beta1, guess.s2, guess.P, guess.a };
+		auto res = [&](const std::array<double, 4>& x, std::array<double, 4>& r) {
+			if (!(x[3] > -0.5)) return false;
+			const Shot s = shoot(x[0], x[1], x[2], x[3], R2_, t1_, t2_, tol_, L_);
 			if (!s.ok) return false;
-			r = { s.dist1 / L_, s.dist2 / L_, s.volume / V_ - 1 };
+			const Vec z = scaled({ x[0], x[1], x[2], x[3] });
+			r           = { s.dy, s.dphi, s.volume / V_ - 1, (z[0] - zp[0]) * t[0] + (z[1] - zp[1]) * t[1] + (z[2] - zp[2]) * t[2] + (z[3] - zp[3]) * t[3] };
 			return true;
 		};
-		if (!newton(u, { yn, std::max(1.0, std::abs(guess.P)), std::max(yn * yn, std::abs(guess.a)) }, res))
-			throw std::runtime_error("Young-Laplace: no converged bridge at neck radius " + std::to_string(yn));
-		return { yn, u[0], u[1], u[2] };
+		if (!newton(v, { beta0_, beta0_, 1 / Pscale_, Lr_ }, res)) return false;
+		out = { v[0], v[1], v[2], v[3] };
+		return true;
 	}
 
 	Solution Bridge::solve(double gap, double gamma) const
@@ -301,47 +365,67 @@ namespace yl {
 			throw std::invalid_argument("gap = " + std::to_string(gap) + " m is outside the allowed range [0, rupture gap = " + std::to_string(rupture_)
 			                            + " m]");
 		if (!(gamma > 0)) throw std::invalid_argument("gamma = " + std::to_string(gamma) + " N/m is outside the allowed range (0, inf)");
-		// Bracket on the stable branch, then solve a(yn) = a by the Illinois method in the neck
-		// radius; each a(yn) is a well-conditioned solve, also at the fold.
+		// Bracket on the stable branch; Newton on (beta1, s2, P) at this gap from the interpolated
+		// guess, or, near the fold where that system becomes singular, the Illinois method on a(beta1).
 		size_t k = 0;
 		while (k + 1 < branch_.size() && branch_[k + 1].a < a) ++k;
 		Point p;
 		if (a <= branch_[k].a) p = branch_[k];
 		else if (k + 1 == branch_.size() || a >= branch_[k + 1].a) p = branch_[std::min(k + 1, branch_.size() - 1)];
 		else {
-			Point  lo = branch_[k], hi = branch_[k + 1];
-			int    side = 0;
-			double flo = lo.a - a, fhi = hi.a - a;
-			for (int it = 0; it < 200; ++it) {
-				const double y = (lo.yn * fhi - hi.yn * flo) / (fhi - flo);
-				Point        g = lo;
-				const double f = (y - lo.yn) / (hi.yn - lo.yn);
-				g.xn += f * (hi.xn - lo.xn), g.P += f * (hi.P - lo.P), g.a += f * (hi.a - lo.a);
-				p               = solve_at_neck(y, g);
-				const double fp = p.a - a;
-				if (std::abs(fp) < 1e-14 * (1 + a) || std::abs(hi.yn - lo.yn) < 1e-15) break;
-				if ((fp > 0) == (flo > 0)) {
-					lo = p, flo = fp;
-					if (side == -1) fhi /= 2;
-					side = -1;
-				} else {
-					hi = p, fhi = fp;
-					if (side == 1) flo /= 2;
-					side = 1;
+			Point                 lo = branch_[k], hi = branch_[k + 1];
+			const double          f0 = (a - lo.a) / (hi.a - lo.a);
+			std::array<double, 3> u  = { lo.beta1 + f0 * (hi.beta1 - lo.beta1), lo.s2 + f0 * (hi.s2 - lo.s2), lo.P + f0 * (hi.P - lo.P) };
+			auto                  at_gap = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
+                const Shot s = shoot(v[0], v[1], v[2], a, R2_, t1_, t2_, tol_, L_);
+                if (!s.ok) return false;
+                r = { s.dy, s.dphi, s.volume / V_ - 1 };
+                return true;
+			};
+			const bool near_fold = k + 2 >= branch_.size();
+			if (!near_fold && newton(u, { beta0_, std::max(1e-3, std::abs(u[1])), std::max(1.0, std::abs(u[2])) }, at_gap)
+			    && std::min(lo.beta1, hi.beta1) - 1e-9 <= u[0] && u[0] <= std::max(lo.beta1, hi.beta1) + 1e-9)
+				p = { u[0], u[1], u[2], a };
+			else {
+				// On the chord from lo to hi: the corrector at arclength s, the Illinois method on a(s) = a.
+				const Vec zl = scaled(lo), zh = scaled(hi);
+				Vec       t;
+				double    d = 0;
+				for (int i = 0; i < 4; ++i) t[i] = zh[i] - zl[i], d += t[i] * t[i];
+				d = std::sqrt(d);
+				for (double& x : t) x /= d;
+				double slo = 0, shi = d, flo = lo.a - a, fhi = hi.a - a;
+				int    side = 0;
+				p           = lo;
+				for (int it = 0; it < 200 && shi - slo > 1e-15; ++it) {
+					const double sm = (slo * fhi - shi * flo) / (fhi - flo);
+					if (!on_arc(lo, t, sm, lo, p) && !on_arc(lo, t, sm, sm < d / 2 ? lo : hi, p))
+						throw std::runtime_error("Young-Laplace: no bridge found at gap " + std::to_string(gap));
+					const double fp = p.a - a;
+					if (std::abs(fp) < 1e-14 * (1 + a)) break;
+					if ((fp > 0) == (flo > 0)) {
+						slo = sm, flo = fp;
+						if (side == -1) fhi /= 2;
+						side = -1;
+					} else {
+						shi = sm, fhi = fp;
+						if (side == 1) flo /= 2;
+						side = 1;
+					}
 				}
 			}
 		}
-		const Shot   s = shoot(p.xn, p.yn, p.P, p.a, R2_, t1_, t2_);
+		const Shot   s  = shoot(p.beta1, p.s2, p.P, p.a, R2_, t1_, t2_, tol_, L_);
+		const double y1 = std::sin(p.beta1), phi1 = p.beta1 + t1_ - pi / 2;
 		Solution     out;
-		const double y1 = s.y1, phi1 = s.beta1 + t1_ - pi / 2;
 		out.gap             = p.a * R1_;
-		out.beta1           = s.beta1;
-		out.beta2           = s.beta2;
-		out.contact_radius1 = s.y1 * R1_;
+		out.beta1           = p.beta1;
+		out.beta2           = std::isinf(R2_) ? 0 : p.s2;
+		out.contact_radius1 = y1 * R1_;
 		out.contact_radius2 = s.y2 * R1_;
-		out.neck_radius     = p.yn * R1_;
+		out.neck_radius     = s.neck_y * R1_;
 		out.pressure        = gamma * p.P / R1_;
-		out.force_neck      = pi * gamma * R1_ * (2 * p.yn - p.P * p.yn * p.yn);
+		out.force_neck      = pi * gamma * R1_ * (2 * s.neck_y * std::cos(s.neck_phi) - p.P * s.neck_y * s.neck_y);
 		out.force_contact   = pi * gamma * R1_ * (2 * y1 * std::cos(phi1) - p.P * y1 * y1);
 		out.volume          = s.volume * R1_ * R1_ * R1_;
 		return out;

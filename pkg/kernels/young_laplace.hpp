@@ -1,7 +1,8 @@
 // Exact pendular liquid bridge of fixed volume between two spheres (or a sphere and a plane),
 // zero gravity: the axisymmetric meniscus of constant mean curvature (Young-Laplace equation),
-// solved by shooting from the neck towards both solids (unknowns: neck position, neck radius,
-// pressure), with continuation along the branch of solutions. This is the reference the closed-form models were fitted to (Lian 1993,
+// solved by multiple shooting from both contact lines to a matching plane (unknowns: the two
+// filling angles and the pressure), with pseudo-arclength continuation along the branch of
+// solutions. This is the reference the closed-form models were fitted to (Lian 1993,
 // Willett 2000); no DEM code offers it at run time. SI units, radians.
 //
 // Profile in arc length s, rotating about the line of centres (x axis):
@@ -11,6 +12,7 @@
 // same value, which checks the integration.
 #pragma once
 
+#include <array>
 #include <vector>
 
 namespace capillary {
@@ -28,13 +30,14 @@ namespace yl {
 	};
 
 	// One bridge: the geometry is fixed, the gap varies. The constructor follows the branch of
-	// solutions from contact (a = 0) by continuation in the neck radius and finds the largest gap
-	// with a stable bridge (the fold of the branch: the true rupture distance).
+	// solutions from contact (a = 0) by continuation in the filling angle and finds the largest
+	// gap with a stable bridge (the fold of the branch: the true rupture distance).
 	class Bridge {
 	public:
 		// R2 = infinity: sphere-plane. theta2 < 0: equal to theta1. Throws std::invalid_argument for
 		// inputs outside R > 0, V > 0, theta in [0, pi/2), and std::runtime_error if no bridge exists.
-		Bridge(double R1, double R2, double volume, double theta1, double theta2 = -1);
+		// tolerance: local error bound of the adaptive Dormand-Prince integration of the profile.
+		Bridge(double R1, double R2, double volume, double theta1, double theta2 = -1, double tolerance = 1e-12);
 		double   rupture_gap() const { return rupture_; }     // [m]
 		// The stable bridge at gap in [0, rupture_gap()]; gamma [N/m] scales forces and pressure.
 		// Throws std::invalid_argument outside that range.
@@ -42,11 +45,18 @@ namespace yl {
 
 	private:
 		struct Point {
-			double yn, xn, P, a; // neck radius and position, pressure / gamma, gap; scaled by R1
+			double beta1, s2, P, a; // filling angle on sphere 1, on sphere 2 (contact radius on a plane), pressure / gamma, gap; scaled by R1
 		};
-		Point solve_at_neck(double yn, const Point& guess) const; // unknowns xn, P, a
+		using Vec = std::array<double, 4>;
+		Vec scaled(const Point& p) const; // (beta1 / beta0_, s2 / beta0_, P Pscale_, a / Lr_): arclength coordinates
+		// The solution on the hyperplane through scaled(base) + step t normal to the unit tangent t:
+		// pseudo-arclength corrector, regular at folds. Newton starts at the predictor, or at guess
+		// if it differs from base.
+		bool on_arc(const Point& base, const Vec& t, double step, const Point& guess, Point& out) const;
 		double R1_, R2_, V_, t1_, t2_; // R2_, V_ dimensionless (/R1, /R1^3)
-		double L_;                     // length scale of the shooting residuals (scaled by R1)
+		double tol_;
+		double L_;                     // length scale of the matching residual (scaled by R1)
+		double beta0_ = 0, Lr_ = 0, Pscale_ = 0; // scales of the arclength: filling angle at contact, V^(1/3), a length
 		double rupture_;               // [m]
 		std::vector<Point> branch_;    // stable branch, from contact to rupture (a increasing)
 	};

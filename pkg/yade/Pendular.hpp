@@ -52,7 +52,7 @@ public:
 		((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; formulas use the mean (Elskamp2018), the willett_elskamp rupture rule uses both."))
-		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model: weigert, willett_full, willett_reduced, rabinovich, rabinovich_lambert, richefeu, soulie, linear_irreversible. Must be equal on both materials."))
+		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model: weigert, willett_full, willett_reduced, rabinovich, rabinovich_lambert, richefeu, soulie, linear_irreversible, young_laplace_table (exact, tabulated; uses the exact rupture distance). Must be equal on both materials."))
 		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32). Must be equal on both materials. linear_irreversible uses its own range fmax/kc."))
 		((bool, forceInContact, false, Attr::triggerPostLoad, "True: the bridge force at contact F(0) also acts during overlap (Richefeu2008, Roy); False: it is off during overlap (Gladkyy2014 eq. 4). Must be equal on both materials."))
 		((Real, linearFmax, 0, Attr::triggerPostLoad, "linear_irreversible: maximum adhesive force [N], (0, inf); 0 (with linearKc = 0) to calibrate from calibrateFrom."))

@@ -13,10 +13,15 @@ returns the attractive force [N]; ``bridge(...)`` the per-bridge invariants (eff
 rupture distance, F(0), adhesive energy); ``rupture_distance(rule, R1, R2, volume, theta)``;
 ``models()`` and ``rupture_rules()`` list names with references. Use ``R2=float('inf')`` for a
 sphere-wall bridge. Bad input raises ValueError naming the parameter and its allowed range.
-"""
-from _yade_capillary_kernels import bridge, force, models, rupture_distance, rupture_rules, willett_coefficients
 
-__all__ = ["bridge", "force", "models", "rupture_distance", "rupture_rules", "willett_coefficients", "MODEL_NAMES", "RUPTURE_NAMES"]
+``YoungLaplaceBridge(R1, R2, volume, theta1)`` is the exact solver: ``.rupture_gap`` and
+``.solve(gap, gamma)`` (force by the neck and contact-line methods, filling angles, pressure).
+"""
+from _yade_capillary_kernels import (YoungLaplaceBridge, bridge, force, models, rupture_distance, rupture_rules, table_axes,
+                                     willett_coefficients)
+
+__all__ = ["YoungLaplaceBridge", "bridge", "force", "models", "rupture_distance", "rupture_rules", "table_axes",
+           "willett_coefficients", "MODEL_NAMES", "RUPTURE_NAMES"]
 
 MODEL_NAMES = [m[0] for m in models()]
 RUPTURE_NAMES = [r[0] for r in rupture_rules()]

@@ -24,7 +24,8 @@ def force_curves(curves, case, models, path, title, scale=1e3, unit="mN", gap_sc
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for m in models:
         g, F = curves[(case, m)]
-        ax.plot([x * gap_scale for x in g], [y * scale for y in F], label=m, lw=1.2)
+        style = dict(color="k", ls="--", lw=2, label="young_laplace (exact)") if m == "young_laplace" else dict(lw=1.2, label=m)
+        ax.plot([x * gap_scale for x in g], [y * scale for y in F], **style)
     ax.set_xlabel("separation a [%s]" % gap_unit)
     ax.set_ylabel("capillary force F [%s]" % unit)
     ax.set_title(title, fontsize=10)

@@ -47,11 +47,20 @@ def pull_off(case, model, rupture="willett", steps=1000, dt=1e-6):
     return a_crit, gaps, forces
 
 
+def exact_curve(case, steps=1000):
+    """The exact Young-Laplace force at the same kind of gaps: (a_crit [m], gaps [m], forces [N])."""
+    b = kernels.YoungLaplaceBridge(case.R1_m, case.R2_m, case.volume_m3, case.theta_rad)
+    a_crit = b.rupture_gap
+    gaps = [a_crit * i / steps for i in range(int(steps * 1.02) + 2)]
+    return a_crit, gaps, [b.solve(g, case.gamma_N_m)["force_neck"] if g <= a_crit else 0.0 for g in gaps]
+
+
 def run_all(cases, models, outdir, steps=1000, log=print):
     """Run every case with every model; write forces.csv and summary.csv in outdir.
 
-    Returns the summary rows: dicts with case, model, a_crit_m and the force at each
-    SUMMARY_FRACTIONS of a_crit (F_0_N, F_0.5_N, F_0.95_N).
+    Besides the models (run in YADE through the Law2), the exact solver's curve is written as
+    model ``young_laplace``. Returns the summary rows: dicts with case, model, a_crit_m and the
+    force at each SUMMARY_FRACTIONS of a_crit (F_0_N, F_0.5_N, F_0.95_N).
     """
     os.makedirs(outdir, exist_ok=True)
     summary = []
@@ -59,8 +68,8 @@ def run_all(cases, models, outdir, steps=1000, log=print):
         w = csv.writer(f)
         w.writerow(["case", "model", "gap_m", "force_N", "gap_over_acrit", "R1_m", "R2_m", "volume_m3", "gamma_N_m", "theta_rad"])
         for c in cases:
-            for m in models:
-                a_crit, gaps, forces = pull_off(c, m, steps=steps)
+            for m in list(models) + ["young_laplace"]:
+                a_crit, gaps, forces = exact_curve(c, steps) if m == "young_laplace" else pull_off(c, m, steps=steps)
                 for g, F in zip(gaps, forces):
                     w.writerow([c.code, m, "%.9e" % g, "%.9e" % F, "%.6f" % (g / a_crit), c.R1_m, c.R2_m, c.volume_m3, c.gamma_N_m, c.theta_rad])
                 row = {"case": c.code, "model": m, "a_crit_m": a_crit}

@@ -7,7 +7,7 @@ import pytest
 from yade_capillary import cases, kernels
 
 ISSUE_MODELS = ["weigert", "willett_full", "willett_reduced", "rabinovich", "rabinovich_lambert", "richefeu", "soulie",
-                "linear_irreversible"]
+                "linear_irreversible", "young_laplace_table"]
 W11 = cases.case("W11")
 ARGS = dict(R1=W11.R1_m, R2=W11.R2_m, volume=W11.volume_m3, gamma=W11.gamma_N_m, theta=W11.theta_rad)
 

@@ -1,0 +1,51 @@
+// Cost of one force evaluation per model (Google Benchmark), on Gladkyy's W11 bridge: the
+// per-bridge invariants are computed once, as in the Law2; gaps cycle through [0, rupture).
+// The exact solver is timed per solve on an existing bridge (its branch already followed).
+#include "models.hpp"
+#include "young_laplace.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+using namespace capillary;
+
+namespace {
+BridgeSpec w11(Model m)
+{
+	BridgeSpec s;
+	s.R1 = s.R2 = 2.381e-3, s.volume = 13.6e-12, s.gamma = 20.6e-3, s.model = m;
+	return s;
+}
+
+void model_force(benchmark::State& state, Model m)
+{
+	const Bridge        b = make_bridge(w11(m));
+	std::vector<double> gaps(1024);
+	for (size_t i = 0; i < gaps.size(); ++i) gaps[i] = b.rupture * (i + 0.5) / gaps.size();
+	size_t i = 0;
+	for (auto _ : state) {
+		benchmark::DoNotOptimize(bridge_force(b, gaps[i++ & 1023]));
+	}
+}
+
+void solver_force(benchmark::State& state)
+{
+	const BridgeSpec s = w11(Model::willett_full);
+	const yl::Bridge b(s.R1, s.R2, s.volume, 0);
+	int              i = 0;
+	for (auto _ : state) {
+		benchmark::DoNotOptimize(b.solve(b.rupture_gap() * ((i++ % 16) + 0.5) / 16, s.gamma).force_neck);
+	}
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+	for (const auto& row : models()) benchmark::RegisterBenchmark(row.name, model_force, row.model);
+	benchmark::RegisterBenchmark("young_laplace", solver_force)->Unit(benchmark::kMicrosecond);
+	benchmark::Initialize(&argc, argv);
+	benchmark::RunSpecifiedBenchmarks();
+	benchmark::Shutdown();
+	return 0;
+}

@@ -1,0 +1,16 @@
+# Turn a data CSV (comment lines starting with '#', one header line) into a C++ initializer list:
+# cmake -DIN=table.csv -DOUT=table.inc -P csv_to_inc.cmake
+file(STRINGS "${IN}" lines)
+set(out "// generated from ${IN} by tools/csv_to_inc.cmake\n")
+set(header_seen FALSE)
+foreach(line IN LISTS lines)
+  if(line MATCHES "^#")
+    continue()
+  endif()
+  if(NOT header_seen)
+    set(header_seen TRUE)
+    continue()
+  endif()
+  string(APPEND out "${line},\n")
+endforeach()
+file(WRITE "${OUT}" "${out}")
