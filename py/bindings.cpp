@@ -154,15 +154,15 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 
 	m.def("table_axes", [] {
 		py::dict d;
-		py::list lnv, theta, rho, w;
+		py::list lnv, theta, rho, tau;
 		for (int i = 0; i < yltable::n_lnv; ++i) lnv.append(yltable::lnv_node(i));
 		for (int i = 0; i < yltable::n_theta; ++i) theta.append(yltable::theta_node(i));
 		for (double r : yltable::rho_nodes) rho.append(r);
-		for (int i = 0; i < yltable::n_w; ++i) w.append(yltable::w_node(i));
-		d["ln_vstar"] = lnv, d["theta"] = theta, d["rho"] = rho, d["w"] = w;
+		for (int i = 0; i < yltable::n_w; ++i) tau.append(yltable::tau_node(i));
+		d["ln_vstar"] = lnv, d["theta"] = theta, d["rho"] = rho, d["tau"] = tau;
 		return d;
 	}, "Nodes of the young_laplace_table model: ln_vstar (V* = V/Rh^3), theta [rad], rho = R_small/R_large (0: plane), "
-	   "w = sqrt(1 - a/a_rupture).");
+	   "tau = 1 - sqrt(1 - sqrt(1 - a/a_rupture)).");
 
 	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
 	      "Willett's f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3 [-] and theta [rad].");

@@ -399,7 +399,10 @@ namespace yl {
 				p           = lo;
 				for (int it = 0; it < 200 && shi - slo > 1e-15; ++it) {
 					const double sm = (slo * fhi - shi * flo) / (fhi - flo);
-					if (!on_arc(lo, t, sm, lo, p) && !on_arc(lo, t, sm, sm < d / 2 ? lo : hi, p))
+					// The same hyperplane seen from hi, in case Newton fails from lo's side.
+					Vec back;
+					for (int i = 0; i < 4; ++i) back[i] = -t[i];
+					if (!on_arc(lo, t, sm, lo, p) && !on_arc(lo, t, sm, sm < d / 2 ? lo : hi, p) && !on_arc(hi, back, d - sm, hi, p))
 						throw std::runtime_error("Young-Laplace: no bridge found at gap " + std::to_string(gap));
 					const double fp = p.a - a;
 					if (std::abs(fp) < 1e-14 * (1 + a)) break;

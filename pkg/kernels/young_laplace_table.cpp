@@ -11,13 +11,13 @@ namespace yltable {
 	namespace {
 
 		constexpr double pi      = 3.14159265358979323846;
-		constexpr int    row_len = 4 + n_w; // ln_vstar, theta, rho, ln(a_r/Rh), ln(F/(2 pi Rh gamma)) at the w nodes
+		constexpr int    row_len = 4 + n_w; // ln_vstar, theta, rho, ln(a_r/Rh), ln(F/(2 pi Rh gamma)) at the tau nodes
 
 		const double table[] = {
 #include "young_laplace_table_data.inc"
 		};
 		static_assert(sizeof(table) / sizeof(double) == size_t(n_lnv) * n_theta * n_rho * row_len,
-		              "data/young_laplace_table.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.py)");
+		              "data/young_laplace_table.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.cpp)");
 
 		const double* row(int i, int j, int k) { return table + ((size_t(i) * n_theta + j) * n_rho + k) * row_len; }
 
@@ -79,9 +79,10 @@ namespace yltable {
 		const int i0 = stencil(lnvs.data(), 0, n_lnv, lnv), j0 = stencil(thetas.data(), 0, n_theta, theta1);
 		lagrange(&lnvs[i0], lnv, wv);
 		lagrange(&thetas[j0], theta1, wt);
-		int k0 = 0, nk = 1; // a plane uses its own slice; spheres interpolate over rho in [1/4, 1] only
-		if (!plane) {
-			k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), nk = 4;
+		// A plane and equal spheres use their own slices; other pairs interpolate over rho in [1/4, 0.95].
+		int k0 = plane ? 0 : n_rho - 1, nk = 1;
+		if (!plane && rho < 1) {
+			k0 = stencil(rho_nodes.data(), 1, n_rho - 2, rho), nk = 4;
 			std::copy(&rho_nodes[k0], &rho_nodes[k0] + 4, xs);
 			lagrange(xs, rho, wr);
 		}
@@ -101,9 +102,9 @@ namespace yltable {
 
 	double force(const double* f, double inv_rupture, double a)
 	{
-		const double w  = std::sqrt(std::max(0.0, 1 - a * inv_rupture)) * (n_w - 1);
-		const int    i0 = std::clamp(int(w) - 1, 0, n_w - 4);
-		const double s  = w - i0;
+		const double t  = (1 - std::sqrt(1 - std::sqrt(std::max(0.0, 1 - a * inv_rupture)))) * (n_w - 1);
+		const int    i0 = std::clamp(int(t) - 1, 0, n_w - 4);
+		const double s  = t - i0;
 		const double s1 = s - 1, s2 = s - 2, s3 = s - 3;
 		return (-s1 * s2 * s3 * f[i0] + 3 * s * s2 * s3 * f[i0 + 1] - 3 * s * s1 * s3 * f[i0 + 2] + s * s1 * s2 * f[i0 + 3]) / 6;
 	}

@@ -155,12 +155,15 @@ TEST(Limits, WillettReducedBothNormalisations)
 }
 
 // A sphere-wall bridge: effective radius 2R (harmonic mean with R2 -> inf), so F(0) = 4 pi R
-// gamma cos(theta) (Derjaguin sphere-plane limit); every model equals the pair of equal spheres
-// of radius 2R, and a very large second sphere approaches the wall for the harmonic-mean models.
+// gamma cos(theta) (Derjaguin sphere-plane limit); every closed-form model equals the pair of
+// equal spheres of radius 2R (young_laplace_table holds the exact sphere-plane solution instead,
+// tested against the solver in test_young_laplace.cpp), and a very large second sphere
+// approaches the wall for the harmonic-mean models.
 TEST(Limits, SphereWall)
 {
 	const double R = 1e-3, V = 1e-11, g = 0.07, t = 0.3;
 	for (const auto& row : models()) {
+		if (row.model == Model::young_laplace_table) continue;
 		BridgeSpec wall;
 		wall.R1 = R, wall.R2 = inf, wall.volume = V, wall.gamma = g, wall.theta1 = wall.theta2 = t, wall.model = row.model;
 		BridgeSpec pair = wall;
