@@ -93,7 +93,7 @@ def markdown(summary, rupture_rows, cost_ns, set_name, rule="willett"):
         cells = []
         for f in FRACTIONS:
             s = next(r for r in summary if r["set"] == set_name and r["model"] == model and r["rule"] == rule and r["fraction"] == f)
-            cells.append("%.2f %% / %.1f %%" % (100 * s["median"], 100 * s["worst"]))
+            cells.append("%.2f %% / %.2f %%" % (100 * s["median"], 100 * s["worst"]))
         lines.append("| %s | %s | %.1f | %.2f |" % (model, " | ".join(cells), cost_ns[model], cost_ns[model] / cheapest))
     lines.append("| young_laplace (solver) | exact | | | | | %.0f | %.0f |" % (cost_ns["young_laplace"], cost_ns["young_laplace"] / cheapest))
     lines += ["", "Rupture distance error against the exact rupture gap (%s):" % set_name, "", "| rule | median | worst |", "|---|---|---|"]
