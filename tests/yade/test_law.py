@@ -6,7 +6,7 @@ import os
 import tempfile
 
 from yade import O
-from yade.utils import sphere, wall
+from yade.utils import facet, sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary import cases, kernels
@@ -96,6 +96,19 @@ for model in kernels.MODEL_NAMES:
         gap = -O.interactions[w, s].geom.penetrationDepth
         ck.close(-O.forces.f(s)[0], kernels.force(model, gap, R, float("inf"), V, g, t), 1e-12, "%s sphere-wall force" % model,
                  "kernels.force with R2 = inf")
+
+# A facet is a wall for the bridge as well (Ig2_Facet_Sphere_ScGeom).
+O.reset()
+O.dt = 1e-6
+mat = O.materials.append(PendularMat(tc=2e-5, en=0.8, et=0.8, density=2500, wet=True, Vb=V, gamma=g, theta=t, model="willett_full", forceInContact=True))
+f = O.bodies.append(facet([(0, -5 * R, -5 * R), (0, 5 * R, -5 * R), (0, 0, 5 * R)], material=mat))
+s = O.bodies.append(sphere((R - 1e-9, 0, 0), R, material=mat, fixed=True))
+O.engines = engines()
+O.step()
+O.bodies[s].state.pos = (R + 0.5 * kernels.bridge("willett_full", R, float("inf"), V, g, t)["rupture"], 0, 0)
+O.step()
+gap = -O.interactions[f, s].geom.penetrationDepth
+ck.close(-O.forces.f(s)[0], kernels.force("willett_full", gap, R, float("inf"), V, g, t), 1e-12, "sphere-facet force", "kernels.force with R2 = inf")
 
 # 4. A live bridge survives O.save / O.load (cached invariants are rebuilt by postLoad).
 c = cases.case("W22")
