@@ -55,6 +55,29 @@ namespace yl {
 			return y5;
 		}
 
+		// Root of f on [lo, hi], where f(lo) = flo and f(hi) = fhi have opposite signs, by the Illinois
+		// variant of regula falsi; stops when |f| <= ftol or the bracket is narrower than xtol.
+		template <class F> double illinois(double lo, double hi, double flo, double fhi, F f, double xtol, double ftol)
+		{
+			int    side = 0;
+			double x    = hi;
+			for (int it = 0; it < 200 && hi - lo > xtol; ++it) {
+				x             = (lo * fhi - hi * flo) / (fhi - flo);
+				const double fx = f(x);
+				if (std::abs(fx) <= ftol) break;
+				if ((fx > 0) == (flo > 0)) {
+					lo = x, flo = fx;
+					if (side == -1) fhi /= 2;
+					side = -1;
+				} else {
+					hi = x, fhi = fx;
+					if (side == 1) flo /= 2;
+					side = 1;
+				}
+			}
+			return x;
+		}
+
 		// One arc of the meniscus: from a contact line (x0, y0, phi0) towards +x up to the matching
 		// plane x = xm (halfway between the contact lines), where the profile of the other solid (integrated in the mirror image x -> -x)
 		// must continue it. Both arcs start on their contact line with the angle the contact angle
@@ -73,25 +96,11 @@ namespace yl {
 			State s = { x0, y0, phi0, 0 };
 			if (!(y0 > 0) || !(std::abs(phi0) <= pi / 2) || x0 > xm) return out; // vertical start: theta = 0 on a plane
 			out.neck_y = y0, out.neck_phi = phi0;
-			auto refine = [&](const State& from, const State& to, double step, auto fn) { // Illinois method on the step length
-				double lo = 0, hi = step, flo = fn(from), fhi = fn(to), e;
-				int    side = 0;
-				State  m    = to;
-				for (int it = 0; it < 100 && hi - lo > 1e-16 * (1 + hi); ++it) {
-					const double mid = (lo * fhi - hi * flo) / (fhi - flo);
-					m                = dopri_step(from, P, mid, e);
-					const double fm  = fn(m);
-					if (fm == 0) break;
-					if ((fm > 0) == (flo > 0)) {
-						lo = mid, flo = fm;
-						if (side == -1) fhi /= 2;
-						side = -1;
-					} else {
-						hi = mid, fhi = fm;
-						if (side == 1) flo /= 2;
-						side = 1;
-					}
-				}
+			// The step length in (0, step] from `from` that makes fn vanish.
+			auto refine = [&](const State& from, const State& to, double step, auto fn) {
+				State m = to;
+				double e;
+				illinois(0, step, fn(from), fn(to), [&](double h) { return fn(m = dopri_step(from, P, h, e)); }, 1e-16 * (1 + step), 0);
 				return m;
 			};
 			auto   at_plane = [&](const State& q) { return q[0] - xm; };
@@ -394,28 +403,14 @@ namespace yl {
 				for (int i = 0; i < 4; ++i) t[i] = zh[i] - zl[i], d += t[i] * t[i];
 				d = std::sqrt(d);
 				for (double& x : t) x /= d;
-				double slo = 0, shi = d, flo = lo.a - a, fhi = hi.a - a;
-				int    side = 0;
-				p           = lo;
-				for (int it = 0; it < 200 && shi - slo > 1e-15; ++it) {
-					const double sm = (slo * fhi - shi * flo) / (fhi - flo);
-					// The same hyperplane seen from hi, in case Newton fails from lo's side.
-					Vec back;
-					for (int i = 0; i < 4; ++i) back[i] = -t[i];
+				Vec back; // the same hyperplanes seen from hi, in case Newton fails from lo's side
+				for (int i = 0; i < 4; ++i) back[i] = -t[i];
+				p = lo;
+				illinois(0, d, lo.a - a, hi.a - a, [&](double sm) {
 					if (!on_arc(lo, t, sm, lo, p) && !on_arc(lo, t, sm, sm < d / 2 ? lo : hi, p) && !on_arc(hi, back, d - sm, hi, p))
 						throw std::runtime_error("Young-Laplace: no bridge found at gap " + std::to_string(gap));
-					const double fp = p.a - a;
-					if (std::abs(fp) < 1e-14 * (1 + a)) break;
-					if ((fp > 0) == (flo > 0)) {
-						slo = sm, flo = fp;
-						if (side == -1) fhi /= 2;
-						side = -1;
-					} else {
-						shi = sm, fhi = fp;
-						if (side == 1) flo /= 2;
-						side = 1;
-					}
-				}
+					return p.a - a;
+				}, 1e-15, 1e-14 * (1 + a));
 			}
 		}
 		const Shot   s  = shoot(p.beta1, p.s2, p.P, p.a, R2_, t1_, t2_, tol_, L_);
