@@ -6,4 +6,8 @@ Modules:
     scene    -- helpers that build YADE engine lists for the plugin's functors (inside yade only)
     twosphere -- the two-sphere pull-off scenario (inside yade only) and its summary
     plots    -- matplotlib figures (PNG)
+    accuracy -- error and cost of every model against the Young-Laplace solver
+    benchmark -- side-by-side speed of our Law2 and YADE's built-in capillary law (inside yade)
+    cg       -- axisymmetric coarse-graining (density, angular velocity, stress) for rotating flows
+    fits     -- erf shear-band fit and tau = mu p + c fit with standard errors
 """
