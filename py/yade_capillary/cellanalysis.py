@@ -1,0 +1,160 @@
+"""Analysis of shear-cell snapshots (plain numpy; no yade needed): time-averaged axisymmetric
+coarse-graining, erf fits of the angular velocity, tau-p fit in the shear band, contact
+statistics versus separation (Gladkyy 2014 eq. 15), torques. Conventions are written into the
+outputs (see CONVENTIONS).
+"""
+import glob
+import json
+import os
+
+import numpy as np
+
+from . import cg, fits
+
+CONVENTIONS = {
+    "stress": "compression positive; contact part (line integral, wall contacts integrated to the contact point) + kinetic part",
+    "kernel": "Gaussian in (r, z) of width w = particle radius, normalised over 2 pi r dr dz",
+    "time_average": "numerators and denominators averaged separately over the snapshots",
+    "omega_ratio": "omega / Omega, omega = j_theta / (rho r)",
+    "band_fit": "omega/Omega = 1/2 + 1/2 erf((r - Rc)/W) per height (Gladkyy 2014 eq. 13)",
+    "gamma_dot": "sqrt((r d omega/dr)^2 + (r d omega/dz)^2), i.e. twice the norm of the (r theta, z theta) strain rate",
+    "band": "gamma_dot > gamma_dot_min and > 80 % of the maximum of gamma_dot at that height, density > 50 % of the bulk",
+    "tau_p": "tau = sqrt(sigma_rtheta^2 + sigma_ztheta^2), p = tr(sigma)/3; fit tau = mu p + c (Gladkyy 2014 eq. 14)",
+    "contacts_vs_a": "a = surface separation (negative: overlap); bins of width (a_crit + delta_max)/100 (Gladkyy 2014 eq. 15)",
+}
+
+
+def analyse(rundir, gamma_dot_min=None, heights=5):
+    """Analyse run directory `rundir` (run.json, torque.csv, snap_*.npz); writes fits.json,
+    profiles.csv, contacts_vs_a.csv and PNG plots there; returns the fits dict."""
+    with open(os.path.join(rundir, "run.json")) as f:
+        run = json.load(f)
+    cfg = run["cfg"]
+    R, Omega = cfg["R"], run["Omega_rad_s"]
+    snaps = sorted(glob.glob(os.path.join(rundir, "snap_*.npz")))
+    if not snaps:
+        raise ValueError("analyse: no snapshots in %s" % rundir)
+    grid = cg.Grid(np.arange(cfg["Ri"] + R, cfg["Ro"] - R + 1e-12, R / 2), np.arange(R, cfg["H"] + 1e-12, R / 2), R)
+    rho = np.zeros_like(grid.R)
+    j = np.zeros((3,) + grid.R.shape)
+    sig_c = np.zeros((3, 3) + grid.R.shape)
+    data = [np.load(s) for s in snaps]
+    for d in data:
+        r_, j_ = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])
+        rho += r_ / len(data)
+        j += j_ / len(data)
+        sig_c += cg.contact_stress(grid, d["xP"], d["xI"], d["F"]) / len(data)
+    omega = cg.angular_velocity(grid, rho, j)
+
+    def omega_at(r, z):
+        i = np.clip(np.searchsorted(grid.r, r), 0, len(grid.r) - 1)
+        k = np.clip(np.searchsorted(grid.z, z), 0, len(grid.z) - 1)
+        return np.nan_to_num(omega[i, k])
+
+    sig_k = sum(cg.kinetic_stress(grid, d["x"], d["v"], d["m"], omega_at) for d in data) / len(data)
+    sigma = sig_c + sig_k
+    p, tau = cg.pressure_and_shear(sigma)
+    gdot = cg.strain_rate(grid, np.nan_to_num(omega))
+    ratio = omega / Omega
+
+    # erf fits at several heights in the bulk
+    bulk = rho > 0.5 * np.nanmax(rho)
+    zs = np.linspace(0.2, 0.7, heights) * cfg["H"]
+    band_fits = []
+    for z in zs:
+        k = int(np.argmin(np.abs(grid.z - z)))
+        try:
+            f = fits.fit_band(grid.r[bulk[:, k]], ratio[bulk[:, k], k], Rc0=cfg["Rs"], W0=4 * R)
+            band_fits.append(dict(f, z_m=float(grid.z[k])))
+        except (ValueError, RuntimeError) as e:
+            band_fits.append({"z_m": float(grid.z[k]), "error": str(e)})
+
+    # shear band and tau-p fit
+    gmin = gamma_dot_min if gamma_dot_min is not None else 0.12 * 100.0 / cfg["period"]
+    band = bulk & (gdot > gmin) & (gdot > 0.8 * np.nanmax(np.where(bulk, gdot, 0), axis=0)[None, :])
+    yield_fit = fits.fit_yield(p[band], tau[band]) if band.sum() >= 3 else {"error": "fewer than 3 band points"}
+
+    # torque through the cylinder above the split, from the CG stress: 2 pi Rs^2 * integral sigma_r_theta dz
+    i_s = int(np.argmin(np.abs(grid.r - cfg["Rs"])))
+    s_rt = 0.5 * (sigma[0, 1] + sigma[1, 0])
+    torque_cg = float(2 * np.pi * grid.r[i_s] ** 2 * np.trapz(s_rt[i_s], grid.z))
+
+    # contacts and mean force versus separation (Gladkyy eq. 15), wet-contact density in and out of the band
+    gaps = np.concatenate([d["gap"] for d in data])
+    forces = np.concatenate([np.linalg.norm(d["F"], axis=1) for d in data])
+    a_crit = max(gaps.max(), 0) if len(gaps) else 0
+    delta_max = max(-gaps.min(), 0) if len(gaps) else 0
+    width = (a_crit + delta_max) / 100 if a_crit + delta_max > 0 else 1e-6
+    edges = np.arange(-delta_max, a_crit + width, width)
+    counts, _ = np.histogram(gaps, edges)
+    fsum, _ = np.histogram(gaps, edges, weights=forces)
+    centers = (edges[:-1] + edges[1:]) / 2
+    np.savetxt(os.path.join(rundir, "contacts_vs_a.csv"),
+               np.stack([centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan)], axis=1), delimiter=",",
+               header="a_m,contacts_per_snapshot,mean_force_N", comments="")
+    wet_in, wet_out = _wet_density(data, grid, band, bulk, cfg)
+
+    out = {
+        "config": run["config"], "case": run["case"],
+        "mu": yield_fit.get("mu"), "mu_err": yield_fit.get("mu_err"), "c_Pa": yield_fit.get("c_Pa"), "c_err_Pa": yield_fit.get("c_err_Pa"),
+        "band_points": int(band.sum()), "gamma_dot_min_1_s": gmin,
+        "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
+        "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg,
+        "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out,
+        "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": len(data), "conventions": CONVENTIONS,
+    }
+    with open(os.path.join(rundir, "fits.json"), "w") as f:
+        json.dump(out, f, indent=1, default=float)
+    header = "r_m,z_m,rho_kg_m3,omega_over_Omega,gamma_dot_1_s,p_Pa,tau_Pa,in_band"
+    np.savetxt(os.path.join(rundir, "profiles.csv"),
+               np.stack([grid.R.ravel(), grid.Z.ravel(), rho.ravel(), ratio.ravel(), gdot.ravel(), p.ravel(), tau.ravel(), band.ravel()], axis=1),
+               delimiter=",", header=header, comments="")
+    _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg)
+    return out
+
+
+def _wet_density(data, grid, band, bulk, cfg):
+    """Contacts with a bridge and a gap (a > 0) per volume, inside and outside the band [1/m^3]."""
+    dr, dz = grid.r[1] - grid.r[0], grid.z[1] - grid.z[0]
+    cell_vol = 2 * np.pi * grid.R * dr * dz
+    n_in = n_out = 0
+    for d in data:
+        wet = d["gap"] > 0
+        if not wet.any():
+            continue
+        mid = (d["xP"][wet] + d["xI"][wet]) / 2
+        i = np.clip(np.round((np.hypot(mid[:, 0], mid[:, 1]) - grid.r[0]) / dr).astype(int), 0, len(grid.r) - 1)
+        k = np.clip(np.round((mid[:, 2] - grid.z[0]) / dz).astype(int), 0, len(grid.z) - 1)
+        n_in += np.sum(band[i, k])
+        n_out += np.sum(bulk[i, k] & ~band[i, k])
+    v_in, v_out = cell_vol[band].sum(), cell_vol[bulk & ~band].sum()
+    return (n_in / len(data) / v_in if v_in > 0 else None), (n_out / len(data) / v_out if v_out > 0 else None)
+
+
+def _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    for b in band_fits:
+        k = int(np.argmin(np.abs(grid.z - b["z_m"])))
+        line, = ax[0].plot(grid.r[bulk[:, k]] * 1e3, ratio[bulk[:, k], k], ".", ms=3, label="z = %.1f mm" % (b["z_m"] * 1e3))
+        if "Rc_m" in b:
+            ax[0].plot(grid.r * 1e3, fits.erf_profile(grid.r, b["Rc_m"], b["W_m"]), "-", color=line.get_color(), lw=1)
+    ax[0].axvline(cfg["Rs"] * 1e3, color="k", ls=":", lw=0.8)
+    ax[0].set_xlabel("r [mm]")
+    ax[0].set_ylabel("omega / Omega")
+    ax[0].legend(fontsize=7)
+    ax[1].plot(p[band], tau[band], ".", ms=3)
+    if "mu" in yield_fit:
+        pp = np.linspace(0, np.nanmax(p[band]) if band.any() else 1, 10)
+        ax[1].plot(pp, yield_fit["mu"] * pp + yield_fit["c_Pa"], "r-",
+                   label="mu = %.3f +- %.3f, c = %.2f +- %.2f Pa" % (yield_fit["mu"], yield_fit["mu_err"], yield_fit["c_Pa"], yield_fit["c_err_Pa"]))
+        ax[1].legend(fontsize=7)
+    ax[1].set_xlabel("p [Pa]")
+    ax[1].set_ylabel("tau [Pa]")
+    fig.tight_layout()
+    fig.savefig(os.path.join(rundir, "profiles.png"), dpi=110)
+    plt.close(fig)

@@ -1,0 +1,194 @@
+"""Split-bottom ring shear cell (inside yade): configurations, preparation, run, snapshots.
+
+The cell: spheres between an inner cylinder (radius Ri) and an outer one (Ro) on a bottom split at
+Rs. The outer cylinder and the bottom ring beyond Rs rotate about z with the set period; the inner
+cylinder and the inner bottom stay. All walls are rough: a layer of fixed spheres of the flowing
+radius (with particle friction 0, smooth walls would drag nothing). The full 360 degrees are
+simulated (YADE has no angular periodicity).
+
+Every parameter lives in CONFIGS and CASES; scripts only choose names.
+"""
+import json
+import math
+import os
+import random
+
+import numpy as np
+
+# Gladkyy 2014 materials (section 4.1) in the Luding/Roy cell (Roy et al.: Ro = 110, Ri = 14.7,
+# Rs = 85, H = 40 mm); period 100 s.
+VALIDATION = dict(R=2.381e-3, rho=150.0, tc=5.4e-4, en=0.83, et=0.83, friction=0.0, Ro=0.110, Ri=0.0147, Rs=0.085, H=0.040,
+                  period=100.0, dt_over_tc=0.05, settle_s=0.5, run_s=5.0, snapshots=15, snapshot_dt_s=0.25, seed=1)
+# Same physics scaled for CI (one core, minutes): the cell shrunk to 0.45 of its size (about 1/11
+# of the particles), the same particles, liquid volumes (V/R^3) and hence capillary force to
+# weight; rotation 10x faster and a short run, so the inertial number is about 10x larger than in
+# the validation configuration. A regression check, not a physical prediction.
+CI = dict(VALIDATION, Ro=0.0495, Ri=0.0066, Rs=0.0383, H=0.018, period=10.0, settle_s=0.25, run_s=0.6, snapshots=6,
+          snapshot_dt_s=0.05)
+CONFIGS = {"validation": VALIDATION, "ci": CI}
+
+# Liquid cases: Gladkyy's volumes (W11 and W13 of Table 1), gamma of that table.
+CASES = {
+    "dry": dict(wet=False),
+    "wet13.6nl": dict(wet=True, Vb=13.6e-12, gamma=20.6e-3, theta=0.0, model="willett_full"),
+    "wet74.2nl": dict(wet=True, Vb=74.2e-12, gamma=20.6e-3, theta=0.0, model="willett_full"),
+}
+
+
+def _material(cfg, case):
+    from yade.wrapper import PendularMat
+
+    liquid = {k: v for k, v in CASES[case].items() if k != "wet"}
+    return PendularMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=math.atan(cfg["friction"]),
+                       **liquid, **({"wet": True} if CASES[case]["wet"] else {}))
+
+
+def _ring(radius, z, spacing):
+    n = max(3, int(round(2 * math.pi * radius / spacing)))
+    return [(radius * math.cos(2 * math.pi * k / n), radius * math.sin(2 * math.pi * k / n), z) for k in range(n)]
+
+
+def wall_positions(cfg):
+    """Centres of the wall spheres: {'static': [...], 'rotating': [...]} (rotating: r > Rs bottom and outer cylinder)."""
+    R, d = cfg["R"], 2 * cfg["R"]
+    static, rotating = [], []
+    nz = int(math.ceil(1.3 * cfg["H"] / d)) + 1
+    for k in range(nz):  # cylinders, surfaces at Ri and Ro
+        z = R + k * d
+        static += _ring(cfg["Ri"] - R, z, d)
+        rotating += _ring(cfg["Ro"] + R, z, d)
+    r = cfg["Ri"] - R
+    while r < cfg["Ro"] + R:  # bottom, centres at z = -R (surface at z = 0)
+        (rotating if r > cfg["Rs"] else static).extend(_ring(r, -R, d) if r > 0 else [(0, 0, -R)])
+        r += d * math.sqrt(3) / 2
+    return {"static": static, "rotating": rotating}
+
+
+def prepare(config, case, path, log=print):
+    """Build the cell, fill it to about H, settle under gravity, O.save to path; returns info dict."""
+    from yade import O
+    from yade.utils import sphere
+
+    from .scene import engines
+
+    cfg = CONFIGS[config]
+    O.reset()
+    mat = O.materials.append(_material(cfg, case))
+    walls = wall_positions(cfg)
+    ids = {}
+    for kind, pts in walls.items():
+        ids[kind] = [O.bodies.append(sphere(p, cfg["R"], material=mat, fixed=True)) for p in pts]
+    # Flowing spheres on a loose hexagonal-ish lattice filling the annulus to 1.4 H (settles to ~H).
+    rng = random.Random(cfg["seed"])
+    R, d = cfg["R"], 2.2 * cfg["R"]
+    flowing = []
+    z = 1.5 * R
+    while z < 1.4 * cfg["H"]:
+        r = cfg["Ri"] + 1.2 * R
+        while r < cfg["Ro"] - 1.2 * R:
+            for p in _ring(r, z, d):
+                q = (p[0] + rng.uniform(-0.05, 0.05) * R, p[1] + rng.uniform(-0.05, 0.05) * R, p[2])
+                flowing.append(O.bodies.append(sphere(q, R, material=mat)))
+            r += d
+        z += d
+    O.engines = engines(gravity=(0, 0, -9.81), damping=0.3)
+    O.dt = cfg["dt_over_tc"] * cfg["tc"]
+    steps = int(cfg["settle_s"] / O.dt)
+    log("prepare %s/%s: %d flowing + %d wall spheres, settling %d steps" % (config, case, len(flowing), len(ids["static"]) + len(ids["rotating"]), steps))
+    O.run(steps, True)
+    info = {"config": config, "case": case, "flowing": flowing, "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg}
+    O.tags["shearcell"] = json.dumps(info)
+    O.save(path)
+    return info
+
+
+def run(path_in, outdir, log=print):
+    """Load a prepared cell, rotate the outer parts, record torques and snapshots in outdir.
+
+    Returns a dict with particle-steps per second and the mean torques [N m] of the second half.
+    """
+    import builtins
+    import time
+
+    from yade import O
+    from yade.wrapper import PyRunner, RotationEngine
+
+    from .scene import engines
+
+    O.load(path_in)
+    info = json.loads(O.tags["shearcell"])
+    cfg = info["cfg"]
+    omega = 2 * math.pi / cfg["period"]
+    eng = engines(gravity=(0, 0, -9.81), damping=0.0)
+    eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=omega, rotateAroundZero=True,
+                                  zeroPoint=(0, 0, 0)))
+    os.makedirs(outdir, exist_ok=True)
+    steps = int(cfg["run_s"] / O.dt)
+    every = max(1, int(cfg["snapshot_dt_s"] / O.dt))
+    # Snapshots over the last snapshots * snapshot_dt_s of the run; torques 20 times per snapshot interval.
+    snap_iters = [steps - every * k for k in range(cfg["snapshots"], 0, -1)]
+    torques = []
+
+    def record():
+        rot = sum(_torque_z(b) for b in info["rotating"])
+        sta = sum(_torque_z(b) for b in info["static"])
+        torques.append((O.time, rot, sta))
+        if snap_iters and O.iter - start >= snap_iters[0]:
+            snap_iters.pop(0)
+            n = cfg["snapshots"] - len(snap_iters)
+            snapshot(os.path.join(outdir, "snap_%03d.npz" % n), info)
+            log("  t = %.3f s, snapshot %d, torque rotating %.3e N m, static %.3e N m" % (O.time, n, rot, sta))
+
+    eng.append(PyRunner(command="shearcellRecord()", iterPeriod=max(1, every // 20)))
+    builtins.shearcellRecord = record
+    O.engines = eng
+    start = O.iter
+    t0 = time.time()
+    O.run(steps + 1, True)
+    wall = time.time() - t0
+    T = np.array(torques)
+    half = len(T) // 2
+    out = {"particle_steps_per_s": len(info["flowing"]) * steps / wall, "wall_s": wall, "steps": steps,
+           "torque_rotating_Nm": float(np.mean(T[half:, 1])), "torque_static_Nm": float(np.mean(T[half:, 2])),
+           "Omega_rad_s": omega}
+    np.savetxt(os.path.join(outdir, "torque.csv"), T, delimiter=",", header="time_s,torque_rotating_Nm,torque_static_Nm", comments="")
+    with open(os.path.join(outdir, "run.json"), "w") as f:
+        json.dump(dict(out, config=info["config"], case=info["case"], cfg=cfg), f, indent=1)
+    return out
+
+
+def _torque_z(bid):
+    from yade import O
+
+    x = O.bodies[bid].state.pos
+    F, T = O.forces.f(bid), O.forces.t(bid)
+    return x[0] * F[1] - x[1] * F[0] + T[2]
+
+
+def snapshot(path, info):
+    """Positions, velocities, masses of the flowing spheres, and every contact as (xP, xI or the
+    contact point for wall contacts, force on P) -- what the coarse-graining needs."""
+    from yade import O
+
+    flowing = set(info["flowing"])
+    ids = info["flowing"]
+    x = np.array([O.bodies[i].state.pos for i in ids])
+    v = np.array([O.bodies[i].state.vel for i in ids])
+    m = np.array([O.bodies[i].state.mass for i in ids])
+    xP, xI, F, gap = [], [], [], []
+    for I in O.interactions:
+        if not I.isReal:
+            continue
+        f2 = I.phys.normalForce + I.phys.shearForce  # force on body 2 (YADE convention), capillary included
+        a, b = I.id1, I.id2
+        if a not in flowing and b not in flowing:
+            continue
+        if b in flowing:
+            P, other, f = b, a, f2
+        else:
+            P, other, f = a, b, -f2
+        xP.append(O.bodies[P].state.pos)
+        xI.append(O.bodies[other].state.pos if other in flowing else I.geom.contactPoint)
+        F.append(f)
+        gap.append(-I.geom.penetrationDepth)
+    np.savez_compressed(path, x=x, v=v, m=m, xP=np.array(xP), xI=np.array(xI), F=np.array(F), gap=np.array(gap), t=O.time)
