@@ -23,8 +23,8 @@ VALIDATION = dict(R=2.381e-3, rho=150.0, tc=5.4e-4, en=0.83, et=0.83, friction=0
 # of the particles), the same particles, liquid volumes (V/R^3) and hence capillary force to
 # weight; rotation 10x faster and a short run, so the inertial number is about 10x larger than in
 # the validation configuration. A regression check, not a physical prediction.
-CI = dict(VALIDATION, Ro=0.0495, Ri=0.0066, Rs=0.0383, H=0.018, period=10.0, settle_s=0.25, run_s=0.6, snapshots=6,
-          snapshot_dt_s=0.05)
+CI = dict(VALIDATION, Ro=0.0495, Ri=0.0066, Rs=0.0383, H=0.018, period=10.0, settle_s=0.25, run_s=0.6, snapshots=20,
+          snapshot_dt_s=0.015)
 CONFIGS = {"validation": VALIDATION, "ci": CI}
 
 # Liquid cases: Gladkyy's volumes (W11 and W13 of Table 1), gamma of that table.
