@@ -21,6 +21,8 @@ CONVENTIONS = {
     "band": "gamma_dot > gamma_dot_min and > 80 % of the maximum of gamma_dot at that height, density > 50 % of the bulk",
     "tau_p": "tau = sqrt(sigma_rtheta^2 + sigma_ztheta^2), p = tr(sigma)/3; fit tau = mu p + c (Gladkyy 2014 eq. 14)",
     "contacts_vs_a": "a = surface separation (negative: overlap); bins of width (a_crit + delta_max)/100 (Gladkyy 2014 eq. 15)",
+    "torque": "torque_Nm: on the rotating walls from their contacts (z component about the axis, mean of the second half of "
+              "the run); torque_cg_at_Rs_Nm: 2 pi Rs^2 times the integral of sigma_r_theta over z on the cylinder r = Rs",
 }
 
 

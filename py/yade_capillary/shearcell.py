@@ -59,7 +59,7 @@ def wall_positions(cfg):
         rotating += _ring(cfg["Ro"] + R, z, d)
     r = cfg["Ri"] - R
     while r < cfg["Ro"] + R:  # bottom, centres at z = -R (surface at z = 0)
-        (rotating if r > cfg["Rs"] else static).extend(_ring(r, -R, d) if r > 0 else [(0, 0, -R)])
+        (rotating if r > cfg["Rs"] else static).extend(_ring(r, -R, d))
         r += d * math.sqrt(3) / 2
     return {"static": static, "rotating": rotating}
 
@@ -139,6 +139,7 @@ def run(path_in, outdir, log=print):
             snapshot(os.path.join(outdir, "snap_%03d.npz" % n), info)
             log("  t = %.3f s, snapshot %d, torque rotating %.3e N m, static %.3e N m" % (O.time, n, rot, sta))
 
+    # PyRunner executes a string in yade's global namespace: publish the recorder there.
     eng.append(PyRunner(command="shearcellRecord()", iterPeriod=max(1, every // 20)))
     builtins.shearcellRecord = record
     O.engines = eng
