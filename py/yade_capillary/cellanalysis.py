@@ -18,7 +18,8 @@ CONVENTIONS = {
     "omega_ratio": "omega / Omega, omega = j_theta / (rho r)",
     "band_fit": "omega/Omega = 1/2 + 1/2 erf((r - Rc)/W) per height (Gladkyy 2014 eq. 13)",
     "gamma_dot": "sqrt((r d omega/dr)^2 + (r d omega/dz)^2), i.e. twice the norm of the (r theta, z theta) strain rate",
-    "band": "gamma_dot > gamma_dot_min and > 80 % of the maximum of gamma_dot at that height, density > 50 % of the bulk",
+    "band": "mu, c: gamma_dot > 80 % of its maximum at that height; mu_threshold, c_threshold: gamma_dot > gamma_dot_min; "
+            "both with density > 50 % of the bulk and z > 3 R",
     "tau_p": "tau = sqrt(sigma_rtheta^2 + sigma_ztheta^2), p = tr(sigma)/3; fit tau = mu p + c (Gladkyy 2014 eq. 14)",
     "contacts_vs_a": "a = surface separation (negative: overlap); bins of width (a_crit + delta_max)/100 (Gladkyy 2014 eq. 15)",
     "torque": "torque_Nm: on the rotating walls from their contacts (z component about the axis, mean of the second half of "
@@ -71,10 +72,19 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
         except (ValueError, RuntimeError) as e:
             band_fits.append({"z_m": float(grid.z[k]), "error": str(e)})
 
-    # shear band and tau-p fit
+    # Shear band, two selections (both away from the bottom, z > 3R, where the split itself shears
+    # the layers that touch it, and from the free surface): 'relative', gamma_dot > 80 % of its
+    # maximum at each height (Roy et al.), used for mu and c; 'threshold', gamma_dot > gamma_dot_min
+    # (Gladkyy 2014: 0.12 1/s at a period of 100 s, scaled here with 1/period).
     gmin = gamma_dot_min if gamma_dot_min is not None else 0.12 * 100.0 / cfg["period"]
-    band = bulk & (gdot > gmin) & (gdot > 0.8 * np.nanmax(np.where(bulk, gdot, 0), axis=0)[None, :])
-    yield_fit = fits.fit_yield(p[band], tau[band]) if band.sum() >= 3 else {"error": "fewer than 3 band points"}
+    away = bulk & (grid.Z > 3 * R)
+    band = away & (gdot > 0.8 * np.nanmax(np.where(away, gdot, 0), axis=0)[None, :])
+    band_threshold = away & (gdot > gmin)
+
+    def yield_fit_of(sel):
+        return fits.fit_yield(p[sel], tau[sel]) if sel.sum() >= 3 else {"error": "fewer than 3 band points"}
+
+    yield_fit, yield_threshold = yield_fit_of(band), yield_fit_of(band_threshold)
 
     # torque through the cylinder above the split, from the CG stress: 2 pi Rs^2 * integral sigma_r_theta dz
     i_s = int(np.argmin(np.abs(grid.r - cfg["Rs"])))
@@ -99,7 +109,9 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     out = {
         "config": run["config"], "case": run["case"],
         "mu": yield_fit.get("mu"), "mu_err": yield_fit.get("mu_err"), "c_Pa": yield_fit.get("c_Pa"), "c_err_Pa": yield_fit.get("c_err_Pa"),
-        "band_points": int(band.sum()), "gamma_dot_min_1_s": gmin,
+        "band_points": int(band.sum()), "gamma_dot_min_1_s": gmin, "band_points_threshold": int(band_threshold.sum()),
+        "mu_threshold": yield_threshold.get("mu"), "mu_err_threshold": yield_threshold.get("mu_err"),
+        "c_Pa_threshold": yield_threshold.get("c_Pa"), "c_err_Pa_threshold": yield_threshold.get("c_err_Pa"),
         "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
         "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg,
         "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out,
