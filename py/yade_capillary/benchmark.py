@@ -4,7 +4,9 @@ The scene: n^3 spheres on a touching simple-cubic lattice with random velocities
 every neighbour pair bridged at the first step (3 n^2 (n-1) bridges; 11 520 for n = 16). Both
 laws run the same scene with the same seed and time step in one process; the interaction-loop
 time is read from YADE's engine timing and divided by the number of real interaction-steps.
+shear_cell() compares the two laws on the rotating shear cell (whole-run particle-steps per second).
 """
+import os
 import random
 import time
 
@@ -87,3 +89,53 @@ def ours_run(model, n, steps, seed, vel):
     return measure("yade-capillary Law2_ScGeom_PendularPhys_Bridge (%s)" % model,
                    PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=0, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model),
                    None, n, steps, seed, vel)
+
+
+def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
+    """The prepared shear cell rotating, with our law and with YADE's built-in law (willett_full vs
+    Willett_numeric, same positions, same time step), in one run: particle-steps per second of
+    each (fastest of `repeats` interleaved runs). Returns (builtin, ours) dicts."""
+    import json
+    import math
+    import tempfile
+
+    from yade.wrapper import RotationEngine
+
+    from . import shearcell
+
+    path = os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
+    shearcell.prepare(config, case, path, log=lambda *a: None)
+    O.load(path)
+    info = json.loads(O.tags["shearcell"])
+    cfg, liquid = info["cfg"], shearcell.CASES[case]
+    bodies = [(b.state.pos, b.shape.radius, b.id in set(info["flowing"])) for b in O.bodies]
+    dt = O.dt
+
+    def timed(material, loop):
+        O.reset()
+        O.dt = dt
+        mat = O.materials.append(material)
+        for pos, radius, free in bodies:
+            O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
+        eng = engines(gravity=(0, 0, -9.81))
+        if loop is not None:
+            eng[2] = loop
+        eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / cfg["period"],
+                                      rotateAroundZero=True, zeroPoint=(0, 0, 0)))
+        O.engines = eng
+        O.run(100, True)  # interactions and bridges in place before timing
+        t0 = time.time()
+        O.run(steps, True)
+        return {"particle_steps_per_s": len(info["flowing"]) * steps / (time.time() - t0)}
+
+    builtin_mat = lambda: ViscElCapMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, Capillar=True,
+                                       Vb=liquid["Vb"], gamma=liquid["gamma"], theta=math.degrees(liquid["theta"]), CapillarType="Willett_numeric")
+    ours_mat = lambda: PendularMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, wet=True, Vb=liquid["Vb"],
+                                   gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
+    loop = lambda: InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
+                                   [Law2_ScGeom_ViscElCapPhys_Basic()])
+    runs = [[], []]
+    for _ in range(repeats):
+        runs[0].append(timed(builtin_mat(), loop()))
+        runs[1].append(timed(ours_mat(), None))
+    return [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs]

@@ -64,14 +64,16 @@ def wall_positions(cfg):
     return {"static": static, "rotating": rotating}
 
 
-def prepare(config, case, path, log=print):
-    """Build the cell, fill it to about H, settle under gravity, O.save to path; returns info dict."""
+def prepare(config, case, path, seed=None, log=print):
+    """Build the cell, fill it to about H, settle under gravity, O.save to path; returns info dict.
+
+    seed: overrides the configuration's seed of the random filling (for seed-to-seed scatter)."""
     from yade import O
     from yade.utils import sphere
 
     from .scene import engines
 
-    cfg = CONFIGS[config]
+    cfg = dict(CONFIGS[config], **({} if seed is None else {"seed": seed}))
     O.reset()
     mat = O.materials.append(_material(cfg, case))
     walls = wall_positions(cfg)
@@ -193,3 +195,9 @@ def snapshot(path, info):
         F.append(f)
         gap.append(-I.geom.penetrationDepth)
     np.savez_compressed(path, x=x, v=v, m=m, xP=np.array(xP), xI=np.array(xI), F=np.array(F), gap=np.array(gap), t=O.time)
+
+
+def summary(fit):
+    """The regression quantities of a fits.json: mu, c [Pa], Rc [m] (mean over the fitted heights)."""
+    rc = [r for r in fit["Rc_m"] if r is not None]
+    return {"mu": fit["mu"], "c_Pa": fit["c_Pa"], "Rc_m": float(np.mean(rc)) if rc else None}

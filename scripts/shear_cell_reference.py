@@ -1,0 +1,36 @@
+# Regenerates tests/data/shear_cell_ci_reference.json: the ci configuration of the shear cell,
+# every liquid case, several seeds; stores mean and seed-to-seed standard deviation of mu, c and
+# Rc, and the command line. The CI regression (tests/yade/test_shear_cell_ci.py) compares its own
+# run (seed 1) with these values within 4 standard deviations.
+# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py [nseeds]   (about 2.5 min per seed)
+import json
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+import yade_capillary
+from yade_capillary import cellanalysis, shearcell
+
+nseeds = int(sys.argv[1]) if len(sys.argv) > 1 else 3
+root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(yade_capillary.__file__))))  # __file__ is yade's launcher here
+work = tempfile.mkdtemp(prefix="shear_cell_ref_")
+values = {}
+for case in shearcell.CASES:
+    for seed in range(1, nseeds + 1):
+        d = os.path.join(work, "%s_%d" % (case, seed))
+        os.makedirs(d)
+        shearcell.prepare("ci", case, os.path.join(d, "prepared.yade.gz"), seed=seed)
+        shearcell.run(os.path.join(d, "prepared.yade.gz"), d)
+        s = shearcell.summary(cellanalysis.analyse(d))
+        print(case, seed, s)
+        for k, v in s.items():
+            values.setdefault(case, {}).setdefault(k, []).append(v)
+ref = {"command": "build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py %d" % nseeds, "config": "ci", "seeds": list(range(1, nseeds + 1)),
+       "cases": {c: {k: {"mean": float(np.mean(v)), "std": float(np.std(v, ddof=1)), "values": v} for k, v in q.items()} for c, q in values.items()}}
+path = os.path.join(root, "tests", "data", "shear_cell_ci_reference.json")
+with open(path, "w") as f:
+    json.dump(ref, f, indent=1)
+print("wrote", path)
+sys.exit(0)
