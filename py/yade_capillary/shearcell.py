@@ -25,7 +25,9 @@ VALIDATION = dict(R=2.381e-3, rho=150.0, tc=5.4e-4, en=0.83, et=0.83, friction=0
 # the validation configuration. A regression check, not a physical prediction.
 CI = dict(VALIDATION, Ro=0.0495, Ri=0.0066, Rs=0.0383, H=0.018, period=10.0, settle_s=0.25, run_s=0.6, snapshots=20,
           snapshot_dt_s=0.015)
-CONFIGS = {"validation": VALIDATION, "ci": CI}
+# The validation cell for a short time: measures the speed and projects the cost of the full run.
+VALIDATION_PROBE = dict(VALIDATION, settle_s=0.2, run_s=0.2, snapshots=4, snapshot_dt_s=0.02)
+CONFIGS = {"validation": VALIDATION, "validation_probe": VALIDATION_PROBE, "ci": CI}
 
 # Liquid cases: Gladkyy's volumes (W11 and W13 of Table 1), gamma of that table.
 CASES = {
