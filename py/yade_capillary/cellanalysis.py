@@ -124,6 +124,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
                np.stack([grid.R.ravel(), grid.Z.ravel(), rho.ravel(), ratio.ravel(), gdot.ravel(), p.ravel(), tau.ravel(), band.ravel()], axis=1),
                delimiter=",", header=header, comments="")
     _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg)
+    _contact_plot(rundir, centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan))
     return out
 
 
@@ -171,4 +172,25 @@ def _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg):
     ax[1].set_ylabel("tau [Pa]")
     fig.tight_layout()
     fig.savefig(os.path.join(rundir, "profiles.png"), dpi=110)
+    plt.close(fig)
+
+
+def _contact_plot(rundir, a, n, f):
+    """Contact number and mean force versus separation a (as Gladkyy 2014 Fig. 9)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
+    ax[0].plot(a * 1e6, n, "-")
+    ax[0].set_ylabel("contacts per snapshot")
+    ax[1].plot(a * 1e6, f * 1e3, "-")
+    ax[1].set_ylabel("mean |F| [mN]")
+    ax[1].set_xlabel("separation a [um] (negative: overlap)")
+    for x in ax:
+        x.axvline(0, color="k", lw=0.6)
+        x.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(rundir, "contacts_vs_a.png"), dpi=110)
     plt.close(fig)

@@ -43,7 +43,7 @@ def test_recovers_band_centre_and_width(rundir):
 
 
 def test_outputs_and_conventions(rundir):
-    for name in ("fits.json", "profiles.csv", "contacts_vs_a.csv", "profiles.png"):
+    for name in ("fits.json", "profiles.csv", "contacts_vs_a.csv", "profiles.png", "contacts_vs_a.png"):
         assert os.path.getsize(rundir / name) > 0
     with open(rundir / "fits.json") as f:
         out = json.load(f)
