@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace capillary {
 
@@ -113,7 +114,8 @@ double soulie(const Bridge& b, double a) { return b.k[3] * (b.k[2] + std::exp(b.
 // Linear irreversible: k = {f_max, k_c}.
 double linear_irreversible(const Bridge& b, double a) { return std::max(0.0, b.k[0] - b.k[1] * a); } // Roy (16)
 
-// Young-Laplace table: k = {1/rupture, F at the w nodes}.
+// Young-Laplace table: k = {1/rupture, F at the tau nodes}.
+static_assert(std::tuple_size<decltype(Bridge::k)>::value >= 1 + yltable::n_w, "Bridge::k too small for the young_laplace_table curve");
 double young_laplace_table(const Bridge& b, double a) { return yltable::force(&b.k[1], b.k[0], a); }
 
 double evaluate(const Bridge& b, double a)

@@ -226,7 +226,25 @@ namespace yl {
 			return norm(r) < 1e-9;
 		}
 
+		// Unit vector from `from` to `to` and their distance.
+		std::array<double, 4> unit(const std::array<double, 4>& from, const std::array<double, 4>& to, double& length)
+		{
+			std::array<double, 4> c;
+			for (int i = 0; i < 4; ++i) c[i] = to[i] - from[i];
+			length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3]);
+			for (double& x : c) x /= length;
+			return c;
+		}
+
 	} // namespace
+
+	bool Bridge::residual(double beta1, double s2, double P, double a, double V, std::array<double, 3>& r) const
+	{
+		const Shot s = shoot(beta1, s2, P, a, R2_, t1_, t2_, tol_, L_);
+		if (!s.ok) return false;
+		r = { s.dy, s.dphi, s.volume / V - 1 };
+		return true;
+	}
 
 	Bridge::Bridge(double R1, double R2, double volume, double theta1, double theta2, double tolerance)
 		: tol_(tolerance)
@@ -252,12 +270,7 @@ namespace yl {
 		const double yn0 = std::max(0.5 * rho, rho - rm * (1 - std::sin(b1 + t1_)));
 		std::array<double, 3> u = { b1, plane ? rho : b2, 1 / yn0 - 1 / rm };
 		L_                      = rho; // length scale of the matching residual
-		auto at_contact = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
-			const Shot s = shoot(v[0], v[1], v[2], 0, R2_, t1_, t2_, tol_, L_);
-			if (!s.ok) return false;
-			r = { s.dy, s.dphi, s.volume / Vt - 1 };
-			return true;
-		};
+		auto at_contact = [&](const std::array<double, 3>& v, std::array<double, 3>& r) { return residual(v[0], v[1], v[2], 0, Vt, r); };
 		auto fail = [&] {
 			throw std::runtime_error("Young-Laplace: no pendular bridge at contact for V* = V/R1^3 = " + std::to_string(Vt) + ", theta = "
 			                         + std::to_string(theta1) + " rad");
@@ -283,13 +296,6 @@ namespace yl {
 		beta0_ = branch_[0].beta1, Lr_ = std::cbrt(V_), Pscale_ = L_; // scales of the arclength
 		Vec  t  = { -1, 0, 0, 0 };
 		double ds = 0.02;
-		auto unit = [](const Vec& from, const Vec& to, double& length) {
-			Vec c;
-			for (int i = 0; i < 4; ++i) c[i] = to[i] - from[i];
-			length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3]);
-			for (double& x : c) x /= length;
-			return c;
-		};
 		while (true) {
 			const Point& last = branch_.back();
 			double       d    = 0;
@@ -355,11 +361,10 @@ namespace yl {
 		std::array<double, 4> v = { zp[0] * beta0_, zp[1] * beta0_, zp[2] / Pscale_, zp[3] * Lr_ };
 		if (guess.beta1 != base.beta1) v = { guess.beta1, guess.s2, guess.P, guess.a };
 		auto res = [&](const std::array<double, 4>& x, std::array<double, 4>& r) {
-			if (!(x[3] > -0.5)) return false;
-			const Shot s = shoot(x[0], x[1], x[2], x[3], R2_, t1_, t2_, tol_, L_);
-			if (!s.ok) return false;
+			std::array<double, 3> r3;
+			if (!(x[3] > -0.5) || !residual(x[0], x[1], x[2], x[3], V_, r3)) return false;
 			const Vec z = scaled({ x[0], x[1], x[2], x[3] });
-			r           = { s.dy, s.dphi, s.volume / V_ - 1, (z[0] - zp[0]) * t[0] + (z[1] - zp[1]) * t[1] + (z[2] - zp[2]) * t[2] + (z[3] - zp[3]) * t[3] };
+			r           = { r3[0], r3[1], r3[2], (z[0] - zp[0]) * t[0] + (z[1] - zp[1]) * t[1] + (z[2] - zp[2]) * t[2] + (z[3] - zp[3]) * t[3] };
 			return true;
 		};
 		if (!newton(v, { beta0_, beta0_, 1 / Pscale_, Lr_ }, res)) return false;
@@ -375,7 +380,8 @@ namespace yl {
 			                            + " m]");
 		if (!(gamma > 0)) throw std::invalid_argument("gamma = " + std::to_string(gamma) + " N/m is outside the allowed range (0, inf)");
 		// Bracket on the stable branch; Newton on (beta1, s2, P) at this gap from the interpolated
-		// guess, or, near the fold where that system becomes singular, the Illinois method on a(beta1).
+		// guess, or, near the fold where that system becomes singular, the Illinois method on the
+		// arclength of the chord between the bracketing branch points (pseudo-arclength corrector).
 		size_t k = 0;
 		while (k + 1 < branch_.size() && branch_[k + 1].a < a) ++k;
 		Point p;
@@ -385,26 +391,16 @@ namespace yl {
 			Point                 lo = branch_[k], hi = branch_[k + 1];
 			const double          f0 = (a - lo.a) / (hi.a - lo.a);
 			std::array<double, 3> u  = { lo.beta1 + f0 * (hi.beta1 - lo.beta1), lo.s2 + f0 * (hi.s2 - lo.s2), lo.P + f0 * (hi.P - lo.P) };
-			auto                  at_gap = [&](const std::array<double, 3>& v, std::array<double, 3>& r) {
-                const Shot s = shoot(v[0], v[1], v[2], a, R2_, t1_, t2_, tol_, L_);
-                if (!s.ok) return false;
-                r = { s.dy, s.dphi, s.volume / V_ - 1 };
-                return true;
-			};
+			auto at_gap = [&](const std::array<double, 3>& v, std::array<double, 3>& r) { return residual(v[0], v[1], v[2], a, V_, r); };
 			const bool near_fold = k + 2 >= branch_.size();
 			if (!near_fold && newton(u, { beta0_, std::max(1e-3, std::abs(u[1])), std::max(1.0, std::abs(u[2])) }, at_gap)
 			    && std::min(lo.beta1, hi.beta1) - 1e-9 <= u[0] && u[0] <= std::max(lo.beta1, hi.beta1) + 1e-9)
 				p = { u[0], u[1], u[2], a };
 			else {
 				// On the chord from lo to hi: the corrector at arclength s, the Illinois method on a(s) = a.
-				const Vec zl = scaled(lo), zh = scaled(hi);
-				Vec       t;
-				double    d = 0;
-				for (int i = 0; i < 4; ++i) t[i] = zh[i] - zl[i], d += t[i] * t[i];
-				d = std::sqrt(d);
-				for (double& x : t) x /= d;
-				Vec back; // the same hyperplanes seen from hi, in case Newton fails from lo's side
-				for (int i = 0; i < 4; ++i) back[i] = -t[i];
+				double    d;
+				const Vec t    = unit(scaled(lo), scaled(hi), d);
+				const Vec back = { -t[0], -t[1], -t[2], -t[3] }; // the same hyperplanes seen from hi, in case Newton fails from lo's side
 				p = lo;
 				illinois(0, d, lo.a - a, hi.a - a, [&](double sm) {
 					if (!on_arc(lo, t, sm, lo, p) && !on_arc(lo, t, sm, sm < d / 2 ? lo : hi, p) && !on_arc(hi, back, d - sm, hi, p))

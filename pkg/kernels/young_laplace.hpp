@@ -47,6 +47,9 @@ namespace yl {
 		struct Point {
 			double beta1, s2, P, a; // filling angle on sphere 1, on sphere 2 (contact radius on a plane), pressure / gamma, gap; scaled by R1
 		};
+		// The bridge equations for a candidate: mismatch of the two arcs (height, angle) and relative
+		// volume error against V (scaled by R1^3); false if the profile does not exist.
+		bool residual(double beta1, double s2, double P, double a, double V, std::array<double, 3>& r) const;
 		using Vec = std::array<double, 4>;
 		Vec scaled(const Point& p) const; // (beta1 / beta0_, s2 / beta0_, P Pscale_, a / Lr_): arclength coordinates
 		// The solution on the hyperplane through scaled(base) + step t normal to the unit tangent t:
