@@ -37,10 +37,7 @@ def build(material, n, seed, vel):
 def measure(label, material, loop, n, steps, seed, vel, chunk=100):
     """Run `steps` steps; return dict with ns per interaction-step of the interaction loop."""
     build(material, n, seed, vel)
-    eng = engines()
-    if loop is not None:
-        eng[2] = loop
-    O.engines = eng
+    O.engines = engines(loop=loop)
     O.step()  # first step: collider and interaction creation, not timed
     O.timingEnabled = True
     for e in O.engines:
@@ -99,8 +96,6 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
     import math
     import tempfile
 
-    from yade.wrapper import RotationEngine
-
     from . import shearcell
 
     path = os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
@@ -117,12 +112,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
         mat = O.materials.append(material)
         for pos, radius, free in bodies:
             O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
-        eng = engines(gravity=(0, 0, -9.81))
-        if loop is not None:
-            eng[2] = loop
-        eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / cfg["period"],
-                                      rotateAroundZero=True, zeroPoint=(0, 0, 0)))
-        O.engines = eng
+        O.engines = shearcell.run_engines(info, loop)
         O.run(100, True)  # interactions and bridges in place before timing
         t0 = time.time()
         O.run(steps, True)

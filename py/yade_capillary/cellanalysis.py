@@ -131,7 +131,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
 def _wet_density(data, grid, band, bulk, cfg):
     """Contacts with a bridge and a gap (a > 0) per volume, inside and outside the band [1/m^3]."""
     dr, dz = grid.r[1] - grid.r[0], grid.z[1] - grid.z[0]
-    cell_vol = 2 * np.pi * grid.R * dr * dz
+    cell_vol = grid.volume_elements()
     n_in = n_out = 0
     for d in data:
         wet = d["gap"] > 0

@@ -106,6 +106,19 @@ def prepare(config, case, path, seed=None, log=print):
     return info
 
 
+def run_engines(info, loop=None):
+    """Engines of the running cell: gravity, no numerical damping, the rotating walls turned about z
+    with the configured period; `loop` replaces the InteractionLoop (e.g. another law)."""
+    from yade.wrapper import RotationEngine
+
+    from .scene import engines
+
+    eng = engines(gravity=(0, 0, -9.81), damping=0.0, loop=loop)
+    eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / info["cfg"]["period"],
+                                  rotateAroundZero=True, zeroPoint=(0, 0, 0)))
+    return eng
+
+
 def run(path_in, outdir, log=print):
     """Load a prepared cell, rotate the outer parts, record torques and snapshots in outdir.
 
@@ -115,17 +128,13 @@ def run(path_in, outdir, log=print):
     import time
 
     from yade import O
-    from yade.wrapper import PyRunner, RotationEngine
-
-    from .scene import engines
+    from yade.wrapper import PyRunner
 
     O.load(path_in)
     info = json.loads(O.tags["shearcell"])
     cfg = info["cfg"]
     omega = 2 * math.pi / cfg["period"]
-    eng = engines(gravity=(0, 0, -9.81), damping=0.0)
-    eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=omega, rotateAroundZero=True,
-                                  zeroPoint=(0, 0, 0)))
+    eng = run_engines(info)
     os.makedirs(outdir, exist_ok=True)
     steps = int(cfg["run_s"] / O.dt)
     every = max(1, int(cfg["snapshot_dt_s"] / O.dt))

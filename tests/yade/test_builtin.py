@@ -27,10 +27,7 @@ def forces(case, make_mat, loop, gaps):
     mat = O.materials.append(make_mat())
     b1 = O.bodies.append(sphere((0, 0, 0), case.R1_m, material=mat, fixed=True))
     b2 = O.bodies.append(sphere((case.R1_m + case.R2_m, 0, 0), case.R2_m, material=mat, fixed=True))
-    eng = engines()
-    if loop is not None:
-        eng[2] = loop
-    O.engines = eng
+    O.engines = engines(loop=loop)
     O.step()  # touching: both laws form the bridge at contact
     out = []
     for gap in gaps:
