@@ -114,9 +114,9 @@ double soulie(const Bridge& b, double a) { return b.k[3] * (b.k[2] + std::exp(b.
 // Linear irreversible: k = {f_max, k_c}.
 double linear_irreversible(const Bridge& b, double a) { return std::max(0.0, b.k[0] - b.k[1] * a); } // Roy (16)
 
-// Young-Laplace table: k = {1/rupture, F at the tau nodes}.
-static_assert(std::tuple_size<decltype(Bridge::k)>::value >= 1 + yltable::n_w, "Bridge::k too small for the young_laplace_table curve");
-double young_laplace_table(const Bridge& b, double a) { return yltable::force(&b.k[1], b.k[0], a); }
+// Young-Laplace table: k = the coefficients of yltable::coefficients().
+static_assert(std::tuple_size<decltype(Bridge::k)>::value >= yltable::n_coefficients, "Bridge::k too small for the young_laplace_table coefficients");
+double young_laplace_table(const Bridge& b, double a) { return yltable::force(b.k.data(), a); }
 
 double evaluate(const Bridge& b, double a)
 {
@@ -330,8 +330,7 @@ Bridge make_bridge(const BridgeSpec& s)
 		case Model::young_laplace_table: {
 			// The exact rupture distance of the solver, whatever the rupture rule.
 			const yltable::Curve c = yltable::curve(s.R1, s.R2, s.volume, s.gamma, s.theta1, s.theta2);
-			b.k[0]    = 1 / c.rupture;
-			std::copy(c.force.begin(), c.force.end(), b.k.begin() + 1);
+			yltable::coefficients(c, b.k.data());
 			b.rupture = c.rupture;
 			b.force0  = c.force[yltable::n_w - 1];
 			return b;

@@ -100,13 +100,46 @@ namespace yltable {
 		return out;
 	}
 
-	double force(const double* f, double inv_rupture, double a)
+	double curve_force(const Curve& c, double a)
 	{
-		const double t  = (1 - std::sqrt(1 - std::sqrt(std::max(0.0, 1 - a * inv_rupture)))) * (n_w - 1);
+		const double* f  = c.force.data();
+		const double  t  = (1 - std::sqrt(1 - std::sqrt(std::max(0.0, 1 - a / c.rupture)))) * (n_w - 1);
 		const int    i0 = std::clamp(int(t) - 1, 0, n_w - 4);
 		const double s  = t - i0;
 		const double s1 = s - 1, s2 = s - 2, s3 = s - 3;
 		return (-s1 * s2 * s3 * f[i0] + 3 * s * s2 * s3 * f[i0 + 1] - 3 * s * s1 * s3 * f[i0 + 2] + s * s1 * s2 * f[i0 + 3]) / 6;
+	}
+
+	void coefficients(const Curve& c, double* k)
+	{
+		// 1/F at gap fraction u, and as a function of w = sqrt(1 - u).
+		const auto g_u = [&](double u) { return 1 / curve_force(c, std::clamp(u, 0.0, 1.0) * c.rupture); };
+		const auto g_w = [&](double w) { return g_u(1 - w * w); };
+		// Derivative at a node by central differences over 0.15 of the neighbouring segment; one-sided
+		// (second order) at u = 0 and w = 0: the Lagrange curve in tau is not differentiable in u at
+		// contact (tau ~ sqrt(u)), so a smaller step would pick up that artefact.
+		const auto slope = [](const auto& g, const double* x, int n, int j) {
+			const double step = 0.15 * std::abs(j + 1 < n ? x[j + 1] - x[j] : x[j] - x[j - 1]);
+			if (x[j] == 0) return (-3 * g(0.0) + 4 * g(step) - g(2 * step)) / (2 * step);
+			return (g(x[j] + step) - g(x[j] - step)) / (2 * step);
+		};
+		// One segment from the Hermite data at its ends (x in cells, g and dg/dx), as a cubic in x.
+		const auto segment = [](double* out, double xa, double xb, double ya, double yb, double da, double db) {
+			const double h = xb - xa;
+			const double a[4] = { ya, h * da, 3 * (yb - ya) - h * (2 * da + db), 2 * (ya - yb) + h * (da + db) }; // in s = (x - xa)/h
+			const double binomial[4][4] = { { 1 }, { 1, 1 }, { 1, 2, 1 }, { 1, 3, 3, 1 } };
+			for (int m = 0; m < 4; ++m) out[m] = 0;
+			for (int j = 0; j < 4; ++j)
+				for (int m = 0; m <= j; ++m) out[m] += a[j] * std::pow(1 / h, j) * binomial[j][m] * std::pow(-xa, j - m);
+		};
+		k[0] = u_cells / c.rupture;
+		double gu[n_u], du[n_u], gw[n_wn], dw[n_wn];
+		for (int j = 0; j < n_u; ++j) gu[j] = g_u(u_nodes[j]), du[j] = slope(g_u, u_nodes.data(), n_u, j) / u_cells;
+		for (int j = 0; j < n_wn; ++j) gw[j] = g_w(w_nodes[j]), dw[j] = slope(g_w, w_nodes.data(), n_wn, j) / w_cells;
+		for (int i = 0; i < n_u - 1; ++i)
+			segment(k + 1 + 4 * i, u_cells * u_nodes[i], u_cells * u_nodes[i + 1], gu[i], gu[i + 1], du[i], du[i + 1]);
+		for (int i = 0; i < n_wn - 1; ++i)
+			segment(k + 1 + 4 * (n_u - 1 + i), w_cells * w_nodes[i], w_cells * w_nodes[i + 1], gw[i], gw[i + 1], dw[i], dw[i + 1]);
 	}
 
 } // namespace yltable

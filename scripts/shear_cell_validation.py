@@ -1,0 +1,27 @@
+# Validation runs of the split-bottom cell (issue 4): one dry cell is prepared (filled and settled)
+# once; each case runs from that same packing (wet cases get their liquid at the first step).
+# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG]
+#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation | validation_probe
+# Cases may run in parallel once the dry cell exists (run dry first, or prepare alone with CASE = prepare).
+# Writes results/shear_cell/CONFIG/CASE/{torque.csv, snap_*.npz, run.json, fits.json, profiles.csv, ...,
+# final.yade.gz}; the prepared cell is results/shear_cell/validation/dry/prepared.yade.gz.
+import json
+import os
+import sys
+
+from yade_capillary import cellanalysis, shearcell
+
+case = sys.argv[1]
+config = sys.argv[2] if len(sys.argv) > 2 else "validation_2s"
+prepared = os.path.join("results", "shear_cell", "validation", "dry", "prepared.yade.gz")
+if not os.path.exists(prepared):
+    os.makedirs(os.path.dirname(prepared), exist_ok=True)
+    shearcell.prepare("validation", "dry", prepared)
+if case == "prepare":
+    sys.exit(0)
+outdir = os.path.join("results", "shear_cell", config, case)
+run = shearcell.run(prepared, outdir, config=config, case=case)
+print("run: %.3g particle-steps/s, %d steps in %.1f s" % (run["particle_steps_per_s"], run["steps"], run["wall_s"]))
+fit = cellanalysis.analyse(outdir)
+print(json.dumps({k: fit[k] for k in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "torque_cg_at_Rs_Nm", "band_points")}, indent=1, default=float))
+sys.exit(0)
