@@ -1,7 +1,8 @@
 # Validation runs of the split-bottom cell (issue 4): one dry cell is prepared (filled and settled)
 # once; each case runs from that same packing (wet cases get their liquid at the first step).
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG]
-#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation | validation_probe
+#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation
+#   CASE = report: compare the analysed cases of CONFIG with Gladkyy 2014 (report.md, report.csv)
 # Cases may run in parallel once the dry cell exists (run dry first, or prepare alone with CASE = prepare).
 # Writes results/shear_cell/CONFIG/CASE/{torque.csv, snap_*.npz, run.json, fits.json, profiles.csv, ...,
 # final.yade.gz}; the prepared cell is results/shear_cell/validation/dry/prepared.yade.gz.
@@ -13,6 +14,9 @@ from yade_capillary import cellanalysis, shearcell
 
 case = sys.argv[1]
 config = sys.argv[2] if len(sys.argv) > 2 else "validation_2s"
+if case == "report":
+    print(shearcell.report(os.path.join("results", "shear_cell", config)))
+    sys.exit(0)
 prepared = os.path.join("results", "shear_cell", "validation", "dry", "prepared.yade.gz")
 if not os.path.exists(prepared):
     os.makedirs(os.path.dirname(prepared), exist_ok=True)

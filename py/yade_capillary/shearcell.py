@@ -126,12 +126,26 @@ def run_engines(info, loop=None):
     return eng
 
 
+def _set_config(info, config):
+    """Take the run parameters (RUN_KEYS) of `config` for a cell prepared with another configuration;
+    ValueError naming the parameters if the cell or its preparation differ."""
+    if config not in CONFIGS:
+        raise ValueError("config: %r is not one of %s" % (config, ", ".join(CONFIGS)))
+    want = dict(CONFIGS[config], seed=info["cfg"]["seed"])
+    differ = sorted(k for k in set(want) | set(info["cfg"]) if k not in RUN_KEYS and want.get(k) != info["cfg"].get(k))
+    if differ:
+        raise ValueError("config: %r differs from the prepared cell's %r in %s" % (config, info["config"], ", ".join(differ)))
+    info["config"], info["cfg"] = config, want
+
+
 def _set_case(info, case):
     """Give the loaded cell the liquid of `case`: the material changes in place and all interactions
     are dropped, so the next step re-detects every contact of the settled packing with the new
     material (each one gets a bridge when wet)."""
     from yade import O
 
+    if case not in CASES:
+        raise ValueError("case: %r is not one of %s" % (case, ", ".join(CASES)))
     if info["case"] == case:
         return
     if CASES[info["case"]]["wet"]:
@@ -164,11 +178,7 @@ def run(path_in, outdir, config=None, case=None, log=print):
     O.load(path_in)
     info = json.loads(O.tags["shearcell"])
     if config is not None:
-        want = dict(CONFIGS[config], seed=info["cfg"]["seed"])
-        differ = sorted(k for k in set(want) | set(info["cfg"]) if k not in RUN_KEYS and want.get(k) != info["cfg"].get(k))
-        if differ:
-            raise ValueError("config: %r differs from the prepared cell's %r in %s" % (config, info["config"], ", ".join(differ)))
-        info["config"], info["cfg"] = config, want
+        _set_config(info, config)
     if case is not None:
         _set_case(info, case)
     O.tags["shearcell"] = json.dumps(info)
@@ -258,3 +268,68 @@ def summary(fit):
     """The regression quantities of a fits.json: mu, c [Pa], Rc [m] (mean over the fitted heights)."""
     rc = [r for r in fit["Rc_m"] if r is not None]
     return {"mu": fit["mu"], "c_Pa": fit["c_Pa"], "Rc_m": float(np.mean(rc)) if rc else None}
+
+
+# Gladkyy & Schwarze 2014, section 4.2: tau = mu p + c in the band (gamma_dot > 0.12 1/s), all models.
+GLADKYY_2014 = {"dry": dict(mu=0.13, c_Pa=0.0), "wet13.6nl": dict(mu=0.13, c_Pa=1.3), "wet74.2nl": dict(mu=0.13, c_Pa=2.0)}
+
+
+def surface_band_centre(cfg):
+    """Band centre at the free surface [m], Rs [1 - (H/Rs)^(5/2)] (Fenistein, van de Meent & van Hecke 2004)."""
+    return cfg["Rs"] * (1 - (cfg["H"] / cfg["Rs"]) ** 2.5)
+
+
+def report(config_dir, particles=200000, duration_s=5.0):
+    """Markdown and CSV comparison of every analysed case in config_dir (fits.json, run.json) with
+    Gladkyy 2014 and the surface law for Rc; the cost of a run of `particles` for `duration_s` is
+    projected from each case's measured speed at the configuration's time step. Writes
+    config_dir/report.md and report.csv; returns the Markdown."""
+    rows = []
+    for case in CASES:
+        d = os.path.join(config_dir, case)
+        if not os.path.exists(os.path.join(d, "fits.json")):
+            continue
+        with open(os.path.join(d, "fits.json")) as f:
+            fit = json.load(f)
+        with open(os.path.join(d, "run.json")) as f:
+            run_info = json.load(f)
+        cfg = run_info["cfg"]
+        rc = [(b["z_m"], b["Rc_m"], b["W_m"]) for b in fit["band_fits"] if b["Rc_m"] is not None]
+        dt = cfg["dt_over_tc"] * cfg["tc"]
+        rows.append({
+            "case": case, "mu": fit["mu"], "mu_err": fit["mu_err"], "c_Pa": fit["c_Pa"], "c_err_Pa": fit["c_err_Pa"],
+            "mu_threshold": fit["mu_threshold"], "c_threshold_Pa": fit["c_Pa_threshold"], "band_points": fit["band_points"],
+            "band_points_threshold": fit["band_points_threshold"],
+            "Rc_top_mm": 1e3 * rc[-1][1] if rc else None, "z_top_mm": 1e3 * rc[-1][0] if rc else None,
+            "Rc_mean_mm": 1e3 * float(np.mean([r[1] for r in rc])) if rc else None,
+            "W_mean_mm": 1e3 * float(np.mean([r[2] for r in rc])) if rc else None,
+            "Rc_surface_law_mm": 1e3 * surface_band_centre(cfg),
+            "torque_rotating_Nm": fit["torque_Nm"], "torque_static_Nm": fit["torque_static_Nm"], "torque_cg_at_Rs_Nm": fit["torque_cg_at_Rs_Nm"],
+            "mu_gladkyy": GLADKYY_2014[case]["mu"], "c_gladkyy_Pa": GLADKYY_2014[case]["c_Pa"],
+            "steps": run_info["steps"], "wall_s": run_info["wall_s"], "particle_steps_per_s": run_info["particle_steps_per_s"],
+            "rotation_s": cfg["run_s"], "projected_h": particles * duration_s / dt / run_info["particle_steps_per_s"] / 3600,
+        })
+    if not rows:
+        raise ValueError("config_dir: no analysed case (fits.json) in %s" % config_dir)
+    keys = list(rows[0])
+    with open(os.path.join(config_dir, "report.csv"), "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write(",".join("" if r[k] is None else str(r[k]) for k in keys) + "\n")
+
+    def num(v, fmt):
+        return "n/a" if v is None else fmt % v
+
+    md = ["| case | mu (Gladkyy) | c [Pa] (Gladkyy) | mu, c [Pa], gamma_dot threshold | Rc top / mean [mm] (surface law) | W mean [mm] | torque rotating / static / CG at Rs [mN m] | run |",
+          "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        md.append("| %s | %.3f ± %.3f (%.2f) | %.2f ± %.2f (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %.2f / %.2f / %.2f | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
+            r["case"], r["mu"], r["mu_err"], r["mu_gladkyy"], r["c_Pa"], r["c_err_Pa"], r["c_gladkyy_Pa"],
+            num(r["mu_threshold"], "%.3f"), num(r["c_threshold_Pa"], "%.2f"), r["band_points_threshold"],
+            num(r["Rc_top_mm"], "%.1f"), num(r["Rc_mean_mm"], "%.1f"), r["Rc_surface_law_mm"], num(r["W_mean_mm"], "%.1f"),
+            1e3 * r["torque_rotating_Nm"], 1e3 * r["torque_static_Nm"], 1e3 * r["torque_cg_at_Rs_Nm"],
+            r["rotation_s"], r["steps"], r["wall_s"], r["particle_steps_per_s"], particles, duration_s, r["projected_h"]))
+    text = "\n".join(md) + "\n"
+    with open(os.path.join(config_dir, "report.md"), "w") as f:
+        f.write(text)
+    return text

@@ -1,0 +1,49 @@
+# Shear-cell run options that validation runs rely on: giving a dry prepared cell a liquid
+# (every contact of the packing gets a bridge of the case's volume at the first step, and the
+# liquid totals account for it) and running it with another configuration's run parameters only.
+from yade import O
+from yade.utils import sphere
+
+from yade_capillary import shearcell
+from yade_capillary.scene import engines
+from yade_capillary.testing import Checker
+
+ck = Checker("test_shear_cell_setup")
+cfg = shearcell.CONFIGS["ci"]
+R = cfg["R"]
+
+# Three spheres in a row, each pair overlapping by 1 % of R: two dry contacts.
+O.reset()
+mat = O.materials.append(shearcell._material(cfg, "dry"))
+for k in range(3):
+    O.bodies.append(sphere((k * 1.99 * R, 0, 0), R, material=mat))
+O.engines = engines()
+O.dt = 0.01 * cfg["tc"]
+O.step()
+real = [I for I in O.interactions if I.isReal]
+ck.true(len(real) == 2 and not any(I.phys.wet for I in real), "dry packing: 2 dry contacts (%d)" % len(real))
+
+info = {"case": "dry", "config": "ci", "cfg": dict(cfg)}
+shearcell._set_case(info, "wet74.2nl")
+wet = shearcell.CASES["wet74.2nl"]
+ck.true(info["case"] == "wet74.2nl" and O.materials[0].wet and O.materials[0].model == wet["model"], "material and info take the case")
+O.engines = engines()  # as run() does: a new collider finds the overlaps again
+O.step()
+real = [I for I in O.interactions if I.isReal]
+ck.true(len(real) == 2 and all(I.phys.wet and I.phys.active for I in real), "both contacts have a bridge after the first step")
+for I in real:
+    ck.close(I.phys.Vb, wet["Vb"], 1e-12, "bridge volume", "CASES['wet74.2nl']")
+law = [e for e in O.engines if type(e).__name__ == "InteractionLoop"][0].lawDispatcher.functors[0]
+ck.close(law.liquidFormed, 2 * wet["Vb"], 1e-12, "liquid formed = 2 bridges", "CASES['wet74.2nl']")
+ck.close(law.liquidVolume, 2 * wet["Vb"], 1e-12, "liquid in bridges = 2 bridges", "CASES['wet74.2nl']")
+ck.raises(ValueError, lambda: shearcell._set_case(info, "wet13.6nl"), ["case", "dry"], "a wet cell cannot take another liquid")
+ck.raises(ValueError, lambda: shearcell._set_case(dict(info, case="dry"), "humid"), ["case", "humid", "wet74.2nl"], "unknown case")
+
+# Run parameters only: a cell prepared as `validation` runs as `validation_2s`, not as `ci`.
+prepared = {"case": "dry", "config": "validation", "cfg": dict(shearcell.CONFIGS["validation"])}
+shearcell._set_config(prepared, "validation_2s")
+ck.true(prepared["cfg"]["run_s"] == shearcell.CONFIGS["validation_2s"]["run_s"] and prepared["config"] == "validation_2s",
+        "validation_2s run parameters taken")
+ck.raises(ValueError, lambda: shearcell._set_config(prepared, "ci"), ["config", "Ro", "period"], "another cell is refused")
+ck.raises(ValueError, lambda: shearcell._set_config(prepared, "huge"), ["config", "huge"], "unknown configuration")
+ck.finish()
