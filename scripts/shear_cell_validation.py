@@ -1,7 +1,8 @@
 # Validation runs of the split-bottom cell (issue 4): one dry cell is prepared (filled and settled)
 # once; each case runs from that same packing (wet cases get their liquid at the first step).
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG]
-#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation
+#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation_5s (continues
+#   validation_2s to 5 s of rotation) | validation
 #   CASE = report: compare the analysed cases of CONFIG with Gladkyy 2014 (report.md, report.csv)
 # Cases may run in parallel once the dry cell exists (run dry first, or prepare alone with CASE = prepare).
 # Writes results/shear_cell/CONFIG/CASE/{torque.csv, snap_*.npz, run.json, fits.json, profiles.csv, ...,
@@ -23,6 +24,8 @@ if not os.path.exists(prepared):
     shearcell.prepare("validation", "dry", prepared)
 if case == "prepare":
     sys.exit(0)
+if config in shearcell.CONTINUES:  # from the final state of the earlier run of this case
+    prepared = os.path.join("results", "shear_cell", shearcell.CONTINUES[config], case, "final.yade.gz")
 outdir = os.path.join("results", "shear_cell", config, case)
 run = shearcell.run(prepared, outdir, config=config, case=case)
 print("run: %.3g particle-steps/s, %d steps in %.1f s" % (run["particle_steps_per_s"], run["steps"], run["wall_s"]))
