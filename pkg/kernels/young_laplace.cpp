@@ -293,9 +293,16 @@ namespace yl {
 		// Pseudo-arclength continuation from contact along the branch of solutions (no coordinate
 		// need be monotone on it): the gap grows to a maximum, the fold, which is the rupture
 		// distance; beyond it the bridges are unstable.
+		// The bridge can lose stability (at fixed volume, to axisymmetric perturbations) only where the
+		// Jacobian of the bridge equations at fixed gap is singular: at the fold, and, for equal (or
+		// nearly equal) spheres at larger contact angles, where the neck starts to move towards one
+		// sphere (a symmetry-breaking bifurcation; for nearly equal spheres it becomes a fold of the
+		// branch from contact, close to a second branch that continues to the larger symmetric fold,
+		// onto which large steps can jump). Hence the steps shrink where |det J| falls, and the branch
+		// ends at the first sign change of det J.
 		beta0_ = branch_[0].beta1, Lr_ = std::cbrt(V_), Pscale_ = L_; // scales of the arclength
-		Vec  t  = { -1, 0, 0, 0 };
-		double ds = 0.02;
+		Vec    t  = { -1, 0, 0, 0 };
+		double ds = 0.02, det_last = jacobian_det(branch_[0]);
 		while (true) {
 			const Point& last = branch_.back();
 			double       d    = 0;
@@ -315,6 +322,25 @@ namespace yl {
 			if (next.a < last.a && ds > 1e-3) { // passed the fold: approach it with smaller steps first
 				ds /= 4;
 				continue;
+			}
+			const double det = jacobian_det(next);
+			if (next.a >= last.a && ds > 1e-4 && !(std::abs(det) > 0.3 * std::abs(det_last) && det * det_last > 0)) {
+				ds /= 4; // near a singular point: approach it with smaller steps
+				continue;
+			}
+			if (next.a >= last.a && !(det * det_last > 0)) {
+				// Symmetry-breaking bifurcation between last and next (a still grows): bisect on the sign of det J.
+				double lo = 0, hi = ds;
+				Point  top = last;
+				while (hi - lo > 1e-9) {
+					const double mid = (lo + hi) / 2;
+					Point        p;
+					if (!on_arc(last, t, mid, last, p)) break;
+					if (jacobian_det(p) * det_last > 0) lo = mid, top = p;
+					else hi = mid;
+				}
+				branch_.push_back(top);
+				break;
 			}
 			if (next.a < last.a) {
 				// Just past the fold: maximise a along the arc between the point before last and next,
@@ -345,9 +371,24 @@ namespace yl {
 				break;
 			}
 			branch_.push_back(next);
-			ds = std::min(ds * 1.5, 0.05);
+			det_last = det;
+			ds       = std::min(ds * 1.5, 0.05);
 		}
 		rupture_ = branch_.back().a * R1_;
+	}
+
+	double Bridge::jacobian_det(const Point& p) const
+	{
+		std::array<double, 3> r0, r;
+		if (!residual(p.beta1, p.s2, p.P, p.a, V_, r0)) return std::numeric_limits<double>::quiet_NaN();
+		double       J[3][3];
+		const double h[3] = { 1e-7 * beta0_, 1e-7 * beta0_, 1e-7 / Pscale_ };
+		for (int j = 0; j < 3; ++j) {
+			if (!residual(p.beta1 + (j == 0) * h[0], p.s2 + (j == 1) * h[1], p.P + (j == 2) * h[2], p.a, V_, r)) return std::numeric_limits<double>::quiet_NaN();
+			for (int i = 0; i < 3; ++i) J[i][j] = (r[i] - r0[i]) / 1e-7;
+		}
+		return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
+		     + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
 	}
 
 	Bridge::Vec Bridge::scaled(const Point& p) const { return { p.beta1 / beta0_, p.s2 / beta0_, p.P * Pscale_, p.a / Lr_ }; }

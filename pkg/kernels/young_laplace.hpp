@@ -30,8 +30,9 @@ namespace yl {
 	};
 
 	// One bridge: the geometry is fixed, the gap varies. The constructor follows the branch of
-	// solutions from contact (a = 0) by continuation in the filling angle and finds the largest
-	// gap with a stable bridge (the fold of the branch: the true rupture distance).
+	// solutions from contact (a = 0) by continuation and finds the largest gap with a stable bridge,
+	// the true rupture distance: the fold of the branch or, for (nearly) equal spheres at larger
+	// contact angles, the symmetry-breaking bifurcation before it.
 	class Bridge {
 	public:
 		// R2 = infinity: sphere-plane. theta2 < 0: equal to theta1. Throws std::invalid_argument for
@@ -56,6 +57,8 @@ namespace yl {
 		// pseudo-arclength corrector, regular at folds. Newton starts at the predictor, or at guess
 		// if it differs from base.
 		bool on_arc(const Point& base, const Vec& t, double step, const Point& guess, Point& out) const;
+		// det of d(residual)/d(beta1, s2, P) at fixed gap (columns scaled like the arclength).
+		double jacobian_det(const Point& p) const;
 		double R1_, R2_, V_, t1_, t2_; // R2_, V_ dimensionless (/R1, /R1^3)
 		double tol_;
 		double L_;                     // length scale of the matching residual (scaled by R1)

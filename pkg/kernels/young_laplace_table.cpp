@@ -79,12 +79,12 @@ namespace yltable {
 		const int i0 = stencil(lnvs.data(), 0, n_lnv, lnv), j0 = stencil(thetas.data(), 0, n_theta, theta1);
 		lagrange(&lnvs[i0], lnv, wv);
 		lagrange(&thetas[j0], theta1, wt);
-		// A plane and equal spheres use their own slices; other pairs interpolate over rho in [1/4, 0.95].
-		int k0 = plane ? 0 : n_rho - 1, nk = 1;
-		if (!plane && rho < 1) {
-			k0 = stencil(rho_nodes.data(), 1, n_rho - 2, rho), nk = 4;
-			std::copy(&rho_nodes[k0], &rho_nodes[k0] + 4, xs);
-			lagrange(xs, rho, wr);
+		// A plane uses its own slice; spheres interpolate over rho in [1/4, 1], in sqrt(1 - rho).
+		int k0 = 0, nk = 1;
+		if (!plane) {
+			k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), nk = 4;
+			for (int c = 0; c < 4; ++c) xs[c] = std::sqrt(1 - rho_nodes[k0 + c]);
+			lagrange(xs, std::sqrt(std::max(0.0, 1 - rho)), wr);
 		}
 		std::array<double, row_len> v {};
 		for (int a = 0; a < 4; ++a)

@@ -4,7 +4,7 @@
 //   tau = 1 - sqrt(1 - w), w = sqrt(1 - a / a_rupture): F is smooth in w at the fold, where F(a)
 //   has a square-root singularity, and tau clusters the nodes near contact, where F(a) is steep,
 // as ln(F / (2 pi Rh gamma)) and ln(a_rupture / Rh). A bridge interpolates its own curve F(tau)
-// once (cubic Lagrange in ln V*, theta, rho) and turns it into the form it evaluates every step:
+// once (cubic Lagrange in ln V*, theta, sqrt(1 - rho)) and turns it into the form it evaluates every step:
 // 1/F as a cubic Hermite spline on fixed nodes, in u = a / a_rupture up to u = 3/4 and in
 // w = sqrt(1 - u) beyond (one square root, only there). 1/F is nearly polynomial in u where F falls
 // steeply (for Willett's reduced model it is a quadratic), so 11 segments suffice (0.2 % of the
@@ -24,12 +24,9 @@ namespace yltable {
 	constexpr int n_lnv = 17, n_theta = 21, n_rho = 9, n_w = 25;
 	constexpr double lnv_min = -11.512925464970229, lnv_max = -2.302585092994046; // ln 1e-5, ln 0.1 (all of Gladkyy Table 1)
 	constexpr double theta_max = 0.8726646259971648;                                // 50 degrees
-	// rho nodes: the plane (0), R_small / R_large from 1/4 to 0.95, and equal spheres (1); the domain
-	// is {0} and [1/4, 1]. Equal spheres are a slice of their own: at large contact angles the
-	// symmetric bridge of exactly equal spheres ruptures at a larger gap than a slightly unequal
-	// pair (the symmetry-breaking bifurcation becomes an imperfect one: the rupture gap drops by up to
-	// 6 % between rho = 1 and rho = 0.99 at theta = 45 deg), so it is not interpolated across; pairs
-	// with rho in (0.95, 1) extrapolate from the unequal nodes.
+	// rho nodes: the plane (0), and R_small / R_large from 1/4 to 1 (equal spheres), interpolated in
+	// sqrt(1 - rho): near equal spheres at larger contact angles the rupture gap falls like
+	// sqrt(1 - rho) (the symmetry-breaking bifurcation of equal spheres unfolds into a fold).
 	constexpr std::array<double, n_rho> rho_nodes = { 0.0, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.95, 1.0 };
 	inline double lnv_node(int i) { return lnv_min + (lnv_max - lnv_min) * i / (n_lnv - 1); }
 	inline double theta_node(int i) { return theta_max * i / (n_theta - 1); }
