@@ -68,12 +68,16 @@ def summarize(force_rows):
             for k, v in groups.items()]
 
 
-def costs(model_cost_exe, min_time="0.2"):
-    """ns per evaluation of every model and of the solver, from the Google Benchmark binary."""
-    out = subprocess.run([model_cost_exe, "--benchmark_format=json", "--benchmark_min_time=%s" % min_time],
-                         check=True, capture_output=True, text=True).stdout
+def costs(model_cost_exe, min_time="0.2", repetitions=5):
+    """ns per evaluation of every model and of the solver, from the Google Benchmark binary: the
+    median CPU time of `repetitions` runs in random order (CPU time, so that other processes on a
+    shared machine do not count; interleaved, so that drifts affect every model alike)."""
+    out = subprocess.run([model_cost_exe, "--benchmark_format=json", "--benchmark_min_time=%s" % min_time,
+                          "--benchmark_repetitions=%d" % repetitions, "--benchmark_enable_random_interleaving=true",
+                          "--benchmark_report_aggregates_only=true"], check=True, capture_output=True, text=True).stdout
     scale = {"ns": 1.0, "us": 1e3, "ms": 1e6}
-    return {b["name"]: b["real_time"] * scale[b["time_unit"]] for b in json.loads(out)["benchmarks"]}
+    return {b["run_name"]: b["cpu_time"] * scale[b["time_unit"]] for b in json.loads(out)["benchmarks"]
+            if b.get("aggregate_name") == "median"}
 
 
 def write_csv(path, rows):
