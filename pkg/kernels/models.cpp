@@ -341,7 +341,7 @@ Bridge make_bridge(const BridgeSpec& s)
 
 double bridge_force(const Bridge& b, double a)
 {
-	if (a > b.rupture) return 0;
+	if (!(a <= b.rupture)) return 0; // also a NaN gap: no force rather than NaN
 	if (a <= 0) return b.force0;
 	return evaluate(b, a);
 }

@@ -303,6 +303,7 @@ namespace yl {
 		beta0_ = branch_[0].beta1, Lr_ = std::cbrt(V_), Pscale_ = L_; // scales of the arclength
 		Vec    t  = { -1, 0, 0, 0 };
 		double ds = 0.02, det_last = jacobian_det(branch_[0]);
+		if (!(std::isfinite(det_last) && det_last != 0)) throw std::runtime_error("Young-Laplace: singular bridge equations at contact");
 		while (true) {
 			const Point& last = branch_.back();
 			double       d    = 0;
@@ -324,6 +325,11 @@ namespace yl {
 				continue;
 			}
 			const double det = jacobian_det(next);
+			if (!std::isfinite(det)) { // the perturbed bridges do not exist: as a failed step
+				ds /= 2;
+				if (ds < 1e-8) throw std::runtime_error("Young-Laplace: continuation stalled at filling angle " + std::to_string(last.beta1));
+				continue;
+			}
 			if (next.a >= last.a && ds > 1e-4 && !(std::abs(det) > 0.3 * std::abs(det_last) && det * det_last > 0)) {
 				ds /= 4; // near a singular point: approach it with smaller steps
 				continue;
@@ -336,10 +342,12 @@ namespace yl {
 					const double mid = (lo + hi) / 2;
 					Point        p;
 					if (!on_arc(last, t, mid, last, p)) break;
-					if (jacobian_det(p) * det_last > 0) lo = mid, top = p;
+					const double dm = jacobian_det(p);
+					if (!std::isfinite(dm)) break;
+					if (dm * det_last > 0) lo = mid, top = p;
 					else hi = mid;
 				}
-				branch_.push_back(top);
+				if (top.a > last.a) branch_.push_back(top);
 				break;
 			}
 			if (next.a < last.a) {
