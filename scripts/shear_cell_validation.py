@@ -1,8 +1,8 @@
 # Validation runs of the split-bottom cell (issue 4): one dry cell is prepared (filled and settled)
 # once; each case runs from that same packing (wet cases get their liquid at the first step).
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG]
-#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation_5s (continues
-#   validation_2s to 5 s of rotation) | validation
+#   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation_4s, validation_5s
+#   (continue validation_2s to 4 or 5 s of rotation) | validation (5 s from the prepared cell)
 #   CASE = report: compare the analysed cases of CONFIG with Gladkyy 2014 (report.md, report.csv)
 # Cases may run in parallel once the dry cell exists (run dry first, or prepare alone with CASE = prepare).
 # Writes results/shear_cell/CONFIG/CASE/{torque.csv, snap_*.npz, run.json, fits.json, profiles.csv, ...,

@@ -32,13 +32,15 @@ VALIDATION_PROBE = dict(VALIDATION, settle_s=0.2, run_s=0.2, snapshots=4, snapsh
 # It is prepared exactly like `validation`, so run(..., config="validation_2s") accepts a cell
 # prepared for either, and run() saves final.yade.gz to continue from.
 VALIDATION_2S = dict(VALIDATION, run_s=2.0, snapshots=10, snapshot_dt_s=0.1)
-# Continues a validation_2s run (its final.yade.gz) to Gladkyy's 5 s of rotation, averaged over the
-# last 3 s with Gladkyy's 0.25 s between snapshots (he averaged 15 snapshots over the last 3.5 s).
+# Continue a validation_2s run (its final.yade.gz) to 4 s and to Gladkyy's 5 s of rotation, averaged
+# over the continuation with Gladkyy's 0.25 s between snapshots (he averaged 15 snapshots over the
+# last 3.5 s of 5 s).
+VALIDATION_4S = dict(VALIDATION, run_s=2.0, snapshots=8, snapshot_dt_s=0.25)
 VALIDATION_5S = dict(VALIDATION, run_s=3.0, snapshots=12, snapshot_dt_s=0.25)
 CONFIGS = {"validation": VALIDATION, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
-           "validation_5s": VALIDATION_5S, "ci": CI}
+           "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "ci": CI}
 # Configurations that start from the final state of another one's run of the same case.
-CONTINUES = {"validation_5s": "validation_2s"}
+CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s"}
 # Keys that only control the run; all others describe the cell, its materials and its preparation.
 RUN_KEYS = ("run_s", "snapshots", "snapshot_dt_s")
 
