@@ -5,10 +5,11 @@
 //   has a square-root singularity, and tau clusters the nodes near contact, where F(a) is steep,
 // as ln(F / (2 pi Rh gamma)) and ln(a_rupture / Rh). A bridge interpolates its own curve F(tau)
 // once (cubic Lagrange in ln V*, theta, sqrt(1 - rho)) and turns it into the form it evaluates every step:
-// 1/F as a cubic Hermite spline on fixed nodes, in u = a / a_rupture up to u = 3/4 and in
-// w = sqrt(1 - u) beyond (one square root, only there). 1/F is nearly polynomial in u where F falls
-// steeply (for Willett's reduced model it is a quadratic), so 11 segments suffice (0.2 % of the
-// solver) and a force costs a table lookup, a cubic and one division.
+// 1/F as a cubic Hermite spline on fixed nodes, in u = a / a_rupture up to u = 15/16 and in
+// w = sqrt(1 - u) beyond (one square root, only there: 1/16 of the range, so that the branch is
+// rarely mispredicted). 1/F is nearly polynomial in u where F falls steeply (for Willett's reduced
+// model it is a quadratic), so 12 segments suffice (0.2 % of the solver) and a force costs a table
+// lookup, a cubic and one division.
 // The table is data/young_laplace_table.csv, written by tools/generate_young_laplace_table.cpp and
 // compiled into the library.
 #pragma once
@@ -49,22 +50,22 @@ namespace yltable {
 	double curve_force(const Curve& c, double a);
 
 	// The evaluated form: 1/F as a cubic Hermite spline through fixed nodes, in x = u_cells * u up to
-	// u = 3/4 and in x = w_cells * w beyond (w = sqrt(1 - u) falls from 1/2 to 0 at rupture). Each
+	// u = 15/16 and in x = w_cells * w beyond (w = sqrt(1 - u) falls from 1/4 to 0 at rupture). Each
 	// segment is stored as a cubic in x itself, so a force is: x, a lookup of the segment, a cubic
-	// and one division (and one square root beyond u = 3/4).
+	// and one division (and one square root beyond u = 15/16).
 	// Coefficients of one bridge: k[0] = u_cells / rupture [1/m], then c0..c3 of each segment.
-	constexpr int                      n_u = 8, n_wn = 5, n_segments = n_u - 1 + n_wn - 1;
+	constexpr int                      n_u = 11, n_wn = 3, n_segments = n_u - 1 + n_wn - 1;
 	constexpr int                      n_coefficients = 1 + 4 * n_segments;
-	constexpr std::array<double, n_u>  u_nodes = { 0, 0.0375, 0.075, 0.125, 0.2, 0.3, 0.5, 0.75 };
-	constexpr std::array<double, n_wn> w_nodes = { 0.5, 0.296875, 0.15625, 0.0625, 0 }; // u_nodes[n_u - 1] = 1 - w_nodes[0]^2
+	constexpr std::array<double, n_u>  u_nodes = { 0, 0.0375, 0.075, 0.125, 0.2, 0.3, 0.5, 0.75, 0.85, 0.9, 0.9375 };
+	constexpr std::array<double, n_wn> w_nodes = { 0.25, 0.125, 0 }; // u_nodes[n_u - 1] = 1 - w_nodes[0]^2
 	// Every node is a multiple of 1/u_cells (u) or 1/w_cells (w), so a segment is found by one lookup.
 	constexpr int u_cells = 80, w_cells = 64;
-	constexpr double u_split = 0.75;
+	constexpr double u_split = 0.9375, w_split = 0.25;
 
 	namespace detail {
 		struct SegmentOf {
 			std::array<std::uint8_t, u_cells + 1>     u {}; // cell int(x) -> segment, u < u_split
-			std::array<std::uint8_t, w_cells / 2 + 1> w {}; // cell int(x) -> segment, u >= u_split
+			std::array<std::uint8_t, int(w_split * w_cells) + 1> w {}; // cell int(x) -> segment, u >= u_split
 		};
 		constexpr bool on_grid(double x, int cells)
 		{
@@ -83,7 +84,7 @@ namespace yltable {
 				while (i < n_u - 2 && u_nodes[i + 1] * u_cells < c + 0.5) ++i;
 				s.u[c] = std::uint8_t(i);
 			}
-			for (int c = 0; c <= w_cells / 2; ++c) {
+			for (int c = 0; c <= int(w_split * w_cells); ++c) {
 				int i = n_segments - 1;
 				while (i > n_u - 1 && w_nodes[i - n_u + 1] * w_cells < c + 0.5) --i;
 				s.w[c] = std::uint8_t(i);
@@ -91,7 +92,7 @@ namespace yltable {
 			return s;
 		}
 		inline constexpr SegmentOf segment = segment_of();
-		static_assert(u_nodes[n_u - 1] == u_split && w_nodes[0] * w_nodes[0] == 1 - u_split, "the u and w nodes must join at u_split");
+		static_assert(u_nodes[n_u - 1] == u_split && w_nodes[0] == w_split && w_split * w_split == 1 - u_split, "the u and w nodes must join at u_split");
 	} // namespace detail
 
 	// Fills k[0 .. n_coefficients) from the curve.
