@@ -83,7 +83,7 @@ struct Bridge {
 	double volume;    // [m^3]
 	double rupture;   // [m] gap at which the bridge breaks
 	double force0;    // [N] force at contact, F(a = 0)
-	std::array<double, 49> k; // model-specific invariants, documented in models.cpp (young_laplace_table uses all)
+	std::array<double, 53> k; // model-specific invariants, documented in models.cpp (young_laplace_table uses all)
 };
 
 // Validates (std::invalid_argument naming the parameter and its allowed range) and computes the

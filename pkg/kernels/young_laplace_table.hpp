@@ -5,11 +5,11 @@
 //   has a square-root singularity, and tau clusters the nodes near contact, where F(a) is steep,
 // as ln(F / (2 pi Rh gamma)) and ln(a_rupture / Rh). A bridge interpolates its own curve F(tau)
 // once (cubic Lagrange in ln V*, theta, sqrt(1 - rho)) and turns it into the form it evaluates every step:
-// 1/F as a cubic Hermite spline on fixed nodes, in u = a / a_rupture up to u = 15/16 and in
-// w = sqrt(1 - u) beyond (one square root, only there: 1/16 of the range, so that the branch is
-// rarely mispredicted). 1/F is nearly polynomial in u where F falls steeply (for Willett's reduced
-// model it is a quadratic), so 12 segments suffice (0.2 % of the solver) and a force costs a table
-// lookup, a cubic and one division.
+// 1/F as a cubic Hermite spline on fixed nodes, in u = a / a_rupture up to u = 63/64 and in
+// w = sqrt(1 - u) beyond (one square root, only there: 1/64 of the range, so that the branch is
+// rarely mispredicted; a mispredicted branch cost about 30 % with the split at u = 15/16). 1/F is
+// nearly polynomial in u where F falls steeply (for Willett's reduced model it is a quadratic), so
+// 13 segments suffice (0.2 % of the solver) and a force costs a table lookup, a cubic and one division.
 // The table is data/young_laplace_table.csv, written by tools/generate_young_laplace_table.cpp and
 // compiled into the library.
 #pragma once
@@ -50,17 +50,17 @@ namespace yltable {
 	double curve_force(const Curve& c, double a);
 
 	// The evaluated form: 1/F as a cubic Hermite spline through fixed nodes, in x = u_cells * u up to
-	// u = 15/16 and in x = w_cells * w beyond (w = sqrt(1 - u) falls from 1/4 to 0 at rupture). Each
+	// u = 63/64 and in x = w_cells * w beyond (w = sqrt(1 - u) falls from 1/8 to 0 at rupture). Each
 	// segment is stored as a cubic in x itself, so a force is: x, a lookup of the segment, a cubic
-	// and one division (and one square root beyond u = 15/16).
+	// and one division (and one square root beyond u = 63/64).
 	// Coefficients of one bridge: k[0] = u_cells / rupture [1/m], then c0..c3 of each segment.
-	constexpr int                      n_u = 11, n_wn = 3, n_segments = n_u - 1 + n_wn - 1;
+	constexpr int                      n_u = 13, n_wn = 2, n_segments = n_u - 1 + n_wn - 1;
 	constexpr int                      n_coefficients = 1 + 4 * n_segments;
-	constexpr std::array<double, n_u>  u_nodes = { 0, 0.0375, 0.075, 0.125, 0.2, 0.3, 0.5, 0.75, 0.85, 0.9, 0.9375 };
-	constexpr std::array<double, n_wn> w_nodes = { 0.25, 0.125, 0 }; // u_nodes[n_u - 1] = 1 - w_nodes[0]^2
+	constexpr std::array<double, n_u> u_nodes = { 0, 5 / 128., 10 / 128., 16 / 128., 26 / 128., 38 / 128., 64 / 128., 96 / 128., 109 / 128., 115 / 128., 120 / 128., 124 / 128., 126 / 128. };
+	constexpr std::array<double, n_wn> w_nodes = { 0.125, 0 }; // u_nodes[n_u - 1] = 1 - w_nodes[0]^2
 	// Every node is a multiple of 1/u_cells (u) or 1/w_cells (w), so a segment is found by one lookup.
-	constexpr int u_cells = 80, w_cells = 64;
-	constexpr double u_split = 0.9375, w_split = 0.25;
+	constexpr int u_cells = 128, w_cells = 64;
+	constexpr double u_split = 126 / 128., w_split = 0.125;
 
 	namespace detail {
 		struct SegmentOf {
