@@ -175,6 +175,24 @@ namespace yl {
 			return out;
 		}
 
+		// Forward-difference Jacobian of `res` at u (residual r there), step 1e-7 scale[j], backwards
+		// where the forward point has no bridge; false if neither has. Fills columns 0..N-1 of J.
+		template <size_t N, class F>
+		bool fd_jacobian(const std::array<double, N>& u, const std::array<double, N>& r, const std::array<double, N>& scale, F res, double (&J)[N][N + 1])
+		{
+			for (size_t j = 0; j < N; ++j) {
+				std::array<double, N> up = u, rp;
+				double                du = 1e-7 * scale[j];
+				up[j] += du;
+				if (!res(up, rp)) {
+					du = -du, up[j] = u[j] + du;
+					if (!res(up, rp)) return false;
+				}
+				for (size_t i = 0; i < N; ++i) J[i][j] = (rp[i] - r[i]) / du;
+			}
+			return true;
+		}
+
 		// Damped Newton with a finite-difference Jacobian. `res` returns false where the residual
 		// cannot be evaluated (no bridge for these values); the line search stays out of there.
 		template <size_t N, class F> bool newton(std::array<double, N>& u, const std::array<double, N>& scale, F res)
@@ -189,16 +207,7 @@ namespace yl {
 			for (int it = 0; it < 60; ++it) {
 				if (norm(r) < 1e-12) return true;
 				double J[N][N + 1];
-				for (size_t j = 0; j < N; ++j) {
-					std::array<double, N> up = u, rp;
-					double                du = 1e-7 * scale[j];
-					up[j] += du;
-					if (!res(up, rp)) {
-						du = -du, up[j] = u[j] + du;
-						if (!res(up, rp)) return false;
-					}
-					for (size_t i = 0; i < N; ++i) J[i][j] = (rp[i] - r[i]) / du;
-				}
+				if (!fd_jacobian(u, r, scale, res, J)) return false;
 				for (size_t i = 0; i < N; ++i) J[i][N] = -r[i];
 				for (size_t c = 0; c < N; ++c) { // Gaussian elimination with partial pivoting
 					size_t p = c;
@@ -387,14 +396,11 @@ namespace yl {
 
 	double Bridge::jacobian_det(const Point& p) const
 	{
-		std::array<double, 3> r0, r;
-		if (!residual(p.beta1, p.s2, p.P, p.a, V_, r0)) return std::numeric_limits<double>::quiet_NaN();
-		double       J[3][3];
-		const double h[3] = { 1e-7 * beta0_, 1e-7 * beta0_, 1e-7 / Pscale_ };
-		for (int j = 0; j < 3; ++j) {
-			if (!residual(p.beta1 + (j == 0) * h[0], p.s2 + (j == 1) * h[1], p.P + (j == 2) * h[2], p.a, V_, r)) return std::numeric_limits<double>::quiet_NaN();
-			for (int i = 0; i < 3; ++i) J[i][j] = (r[i] - r0[i]) / 1e-7;
-		}
+		auto res = [&](const std::array<double, 3>& v, std::array<double, 3>& r) { return residual(v[0], v[1], v[2], p.a, V_, r); };
+		const std::array<double, 3> u = { p.beta1, p.s2, p.P };
+		std::array<double, 3>       r0;
+		double                      J[3][4];
+		if (!res(u, r0) || !fd_jacobian(u, r0, { beta0_, beta0_, 1 / Pscale_ }, res, J)) return std::numeric_limits<double>::quiet_NaN();
 		return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
 		     + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
 	}

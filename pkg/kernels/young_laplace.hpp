@@ -57,7 +57,7 @@ namespace yl {
 		// pseudo-arclength corrector, regular at folds. Newton starts at the predictor, or at guess
 		// if it differs from base.
 		bool on_arc(const Point& base, const Vec& t, double step, const Point& guess, Point& out) const;
-		// det of d(residual)/d(beta1, s2, P) at fixed gap (columns scaled like the arclength).
+		// det of d(residual)/d(beta1, s2, P) at fixed gap (NaN where the bridge or its neighbours do not exist).
 		double jacobian_det(const Point& p) const;
 		double R1_, R2_, V_, t1_, t2_; // R2_, V_ dimensionless (/R1, /R1^3)
 		double tol_;

@@ -52,12 +52,17 @@ CASES = {
 }
 
 
+def _liquid(case):
+    """PendularMat attributes of a liquid case, `wet` last (a wet material must already have Vb, gamma)."""
+    attrs = {k: v for k, v in CASES[case].items() if k != "wet"}
+    return dict(attrs, **({"wet": True} if CASES[case]["wet"] else {}))
+
+
 def _material(cfg, case):
     from yade.wrapper import PendularMat
 
-    liquid = {k: v for k, v in CASES[case].items() if k != "wet"}
     return PendularMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=math.atan(cfg["friction"]),
-                       **liquid, **({"wet": True} if CASES[case]["wet"] else {}))
+                       **_liquid(case))
 
 
 def _ring(radius, z, spacing):
@@ -158,11 +163,8 @@ def _set_case(info, case):
         return
     if CASES[info["case"]]["wet"]:
         raise ValueError("case: only a dry prepared cell can be given a liquid (prepared: %r, asked: %r)" % (info["case"], case))
-    mat = O.materials[0]
-    for key, value in CASES[case].items():
-        if key != "wet":
-            setattr(mat, key, value)
-    mat.wet = CASES[case]["wet"]
+    for key, value in _liquid(case).items():
+        setattr(O.materials[0], key, value)
     O.interactions.clear()
     info["case"] = case
 

@@ -33,9 +33,8 @@ real = [I for I in O.interactions if I.isReal]
 ck.true(len(real) == 2 and all(I.phys.wet and I.phys.active for I in real), "both contacts have a bridge after the first step")
 for I in real:
     ck.close(I.phys.Vb, wet["Vb"], 1e-12, "bridge volume", "CASES['wet74.2nl']")
-law = [e for e in O.engines if type(e).__name__ == "InteractionLoop"][0].lawDispatcher.functors[0]
-ck.close(law.liquidFormed, 2 * wet["Vb"], 1e-12, "liquid formed = 2 bridges", "CASES['wet74.2nl']")
-ck.close(law.liquidVolume, 2 * wet["Vb"], 1e-12, "liquid in bridges = 2 bridges", "CASES['wet74.2nl']")
+ck.close(capillaryLaw.liquidFormed, 2 * wet["Vb"], 1e-12, "liquid formed = 2 bridges", "CASES['wet74.2nl']")
+ck.close(capillaryLaw.liquidVolume, 2 * wet["Vb"], 1e-12, "liquid in bridges = 2 bridges", "CASES['wet74.2nl']")
 ck.raises(ValueError, lambda: shearcell._set_case(info, "wet13.6nl"), ["case", "dry"], "a wet cell cannot take another liquid")
 ck.raises(ValueError, lambda: shearcell._set_case(dict(info, case="dry"), "humid"), ["case", "humid", "wet74.2nl"], "unknown case")
 
