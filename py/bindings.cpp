@@ -18,7 +18,7 @@ namespace {
 
 BridgeSpec spec(const std::string& model, double R1, double R2, double volume, double gamma, double theta,
                 std::optional<double> theta2, const std::string& rupture, double linear_fmax, double linear_kc,
-                const std::string& calibrate_from)
+                const std::string& calibrate_from, bool extrapolate)
 {
 	BridgeSpec s;
 	s.model          = model_from_name(model);
@@ -32,37 +32,56 @@ BridgeSpec spec(const std::string& model, double R1, double R2, double volume, d
 	s.theta2         = theta2.value_or(theta);
 	s.linear_fmax    = linear_fmax;
 	s.linear_kc      = linear_kc;
+	s.extrapolate    = extrapolate;
 	return s;
 }
 
-py::dict bridge_dict(const Bridge& b)
+py::dict bridge_dict(const BridgeSpec& s)
 {
-	py::dict d;
-	d["model"]   = name_of(b.model);
-	d["R"]       = b.R;
-	d["theta"]   = b.theta;
-	d["rupture"] = b.rupture;
-	d["force0"]  = b.force0;
-	d["energy"]  = adhesive_energy(b);
-	if (b.model == Model::linear_irreversible) {
-		d["linear_fmax"] = b.k[0];
-		d["linear_kc"]   = b.k[1];
+	const Pair   p = pair_of(s);
+	const Bridge b = make_bridge(s);
+	py::dict     d;
+	d["model"]        = name_of(b.model());
+	d["extrapolated"] = b.extrapolated();
+	d["R"]            = p.R;
+	d["theta"]        = p.theta;
+	d["rupture"]      = b.rupture;
+	d["force0"]       = b.force0;
+	d["energy"]       = adhesive_energy(b);
+	if (const auto* lin = std::get_if<LinearIrreversible>(&b.m)) {
+		d["linear_fmax"] = lin->fmax;
+		d["linear_kc"]   = lin->kc;
 	}
 	return d;
 }
 
-const char* common_args = R"(
-    model: one of models() (weigert, willett_full, willett_reduced, rabinovich, rabinovich_lambert,
-           richefeu, soulie, linear_irreversible)
+py::dict domain_dict(const Domain& d)
+{
+	py::dict out;
+	out["vstar_min"] = d.vstar_min, out["vstar_max"] = d.vstar_max, out["theta_max"] = d.theta_max, out["ratio_max"] = d.ratio_max;
+	out["wall"] = d.wall, out["equal_angles"] = d.equal_angles, out["source"] = d.source;
+	return out;
+}
+
+// The argument documentation, with the model and rule names from the one model table.
+const std::string& common_args()
+{
+	static const std::string doc = R"(
+    model: one of models() ()" + model_names() + R"()
     R1, R2: sphere radii [m]; R2 = inf for a sphere-wall (plane) bridge
     volume: liquid bridge volume [m^3], > 0
     gamma: surface tension [N/m], > 0
     theta: contact angle [rad] in [0, pi/2) (on sphere 1; also on sphere 2 unless theta2 is given)
     theta2: contact angle on sphere 2 [rad]; the formulas use the mean angle
-    rupture: rupture rule, one of rupture_rules() (lian, willett, willett_elskamp)
+    rupture: rupture rule, one of rupture_rules() ()" + rupture_names() + R"()
     linear_fmax [N], linear_kc [N/m]: linear_irreversible parameters; both 0 = calibrate from
            calibrate_from by equal maximum force and adhesive energy (Roy et al. 4.2)
-Raises ValueError naming the parameter and its allowed range.)";
+    extrapolate: outside the model's domain (models()[i]['domain']) a bridge is refused; True
+           evaluates the model at the nearest point of its domain instead, stretched to the
+           bridge's rupture distance and scaled by R cos(theta)
+Raises ValueError naming the parameter, its value and its allowed range.)";
+	return doc;
+}
 
 } // namespace
 
@@ -72,9 +91,17 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 
 	m.def("models", [] {
 		py::list l;
-		for (const auto& r : models()) l.append(py::make_tuple(r.name, r.reference, r.monotone));
+		for (const auto& r : models()) {
+			py::dict d;
+			d["name"] = r.name, d["reference"] = r.reference, d["monotone"] = r.monotone, d["own_rupture"] = r.own_rupture;
+			d["domain"] = domain_dict(r.domain);
+			l.append(d);
+		}
 		return l;
-	}, "List of (name, reference, monotone) for every capillary model.");
+	}, "List of every capillary model as a dict: name, reference, monotone (force never grows with the gap), own_rupture "
+	   "(the model sets its own range, not the rupture rule) and domain (vstar_min, vstar_max: V* = V/R^3 with R the harmonic "
+	   "mean radius, a wall counting as 2 R1 [-]; theta_max [rad]; ratio_max = R_large/R_small [-]; wall: sphere-wall allowed; "
+	   "equal_angles; source).");
 	m.def("rupture_rules", [] {
 		py::list l;
 		for (const auto& r : rupture_rules()) l.append(py::make_tuple(r.name, r.reference));
@@ -85,8 +112,8 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 	        "force",
 	        [](const std::string& model, py::array_t<double> gap, double R1, double R2, double volume, double gamma, double theta,
 	           std::optional<double> theta2, const std::string& rupture, double linear_fmax, double linear_kc,
-	           const std::string& calibrate_from) -> py::object {
-		        const Bridge b = make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from));
+	           const std::string& calibrate_from, bool extrapolate) -> py::object {
+		        const Bridge b = make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from, extrapolate));
 		        py::array_t<double> out(gap.request().shape);
 		        double*             o = out.mutable_data();
 		        const double*       g = gap.data();
@@ -99,31 +126,30 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 	        },
 	        py::arg("model"), py::arg("gap"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("gamma"), py::arg("theta") = 0.0,
 	        py::arg("theta2") = py::none(), py::arg("rupture") = "willett", py::arg("linear_fmax") = 0.0, py::arg("linear_kc") = 0.0,
-	        py::arg("calibrate_from") = "willett_full",
+	        py::arg("calibrate_from") = "willett_full", py::arg("extrapolate") = false,
 	        (std::string("Capillary force [N] (attraction > 0) at surface gap(s) `gap` [m] (float or array): 0 beyond the rupture "
 	                     "distance, F(0) for gap <= 0.")
-	         + common_args)
+	         + common_args())
 	                .c_str());
 
 	m.def(
 	        "bridge",
 	        [](const std::string& model, double R1, double R2, double volume, double gamma, double theta, std::optional<double> theta2,
-	           const std::string& rupture, double linear_fmax, double linear_kc, const std::string& calibrate_from) {
-		        return bridge_dict(make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from)));
+	           const std::string& rupture, double linear_fmax, double linear_kc, const std::string& calibrate_from, bool extrapolate) {
+		        return bridge_dict(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from, extrapolate));
 	        },
 	        py::arg("model"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("gamma"), py::arg("theta") = 0.0,
 	        py::arg("theta2") = py::none(), py::arg("rupture") = "willett", py::arg("linear_fmax") = 0.0, py::arg("linear_kc") = 0.0,
-	        py::arg("calibrate_from") = "willett_full",
+	        py::arg("calibrate_from") = "willett_full", py::arg("extrapolate") = false,
 	        (std::string("Per-bridge invariants as a dict: R (effective radius) [m], theta [rad], rupture (gap) [m], force0 = F(0) [N], "
-	                     "energy = integral of F over [0, rupture] [J], and for linear_irreversible linear_fmax [N], linear_kc [N/m].")
-	         + common_args)
+	                     "energy = integral of F over [0, rupture] [J], extrapolated (bool), and for linear_irreversible linear_fmax [N], linear_kc [N/m].")
+	         + common_args())
 	                .c_str());
 
 	m.def(
 	        "rupture_distance",
 	        [](const std::string& rule, double R1, double R2, double volume, double theta, std::optional<double> theta2) {
-		        BridgeSpec s = spec("willett_reduced", R1, R2, volume, 1.0, theta, theta2, rule, 0, 0, "willett_full");
-		        return make_bridge(s).rupture;
+		        return rupture_distance(rupture_from_name(rule), R1, R2, volume, theta, theta2.value_or(theta));
 	        },
 	        py::arg("rule"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta") = 0.0, py::arg("theta2") = py::none(),
 	        "Rupture distance [m] (largest surface gap) of a rule: lian, willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. "

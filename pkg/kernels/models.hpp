@@ -1,110 +1,331 @@
-// Capillary bridge models as pure functions: SI units in and out, angles in radians, no YADE
-// types. Forces are magnitudes of the attraction along the line of centres (>= 0); the gap a is
-// the surface separation (>= 0).
+// Capillary bridge models: SI units in and out, angles in radians, no YADE types. Forces are
+// magnitudes of the attraction along the line of centres (>= 0); the gap a is the surface
+// separation (>= 0).
 //
-// Every model is evaluated in two steps: make_bridge() validates the inputs and computes the
-// per-bridge invariants once (e.g. Willett's f1..f4, Richefeu's lambda, the rupture distance);
-// bridge_force() is the cheap per-step evaluation. The one-shot functions at the end of this
-// header (force(), rupture_distance()) go through the same two steps, so every formula exists
-// in one place only.
+// Each model is one small type, listed once in CAPILLARY_MODELS below. A type declares
+//   reference    the source of its formula;
+//   domain       where its formula holds (V*, contact angle, size ratio, walls) and the source of
+//                that range;
+//   monotone     whether its force never grows with the gap;
+//   own_rupture  whether it defines its own interaction range instead of the rupture rule;
+// and provides
+//   make(spec, pair, rupture)  its named per-bridge invariants, computed once (it may replace the
+//                              rupture distance of the rule by its own);
+//   force0()                   the force at contact, F(0) [N];
+//   force(a)                   the force at a gap a in (0, rupture] [N], the per-step evaluation.
+// make_bridge() validates the inputs, refuses a bridge outside its model's domain (or, with
+// BridgeSpec::extrapolate, evaluates the model at the nearest point of its domain, see
+// Extrapolated) and returns a Bridge: the model as a variant index plus its invariants.
+// bridge_force() is the cheap per-step call. Adding a model: one type here, one line in
+// CAPILLARY_MODELS, one reference file in tests/data/models/, one literal-formula test in
+// tests/kernels/test_models.cpp, one README row.
 #pragma once
 
+#include "conventions.hpp"
+#include "young_laplace_table.hpp"
+
 #include <array>
-#include <limits>
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace capillary {
 
-enum class Model {
-	weigert,             // Gladkyy2014 eq. (5), (A2)-(A7); Weigert & Ripperger 1999
-	willett_full,        // Gladkyy2014 eq. (6), (7), (B1)-(B4); Willett et al. 2000
-	willett_reduced,     // Gladkyy2014 eq. (6), (8); Willett et al. 2000 eq. (12)
-	rabinovich,          // Gladkyy2014 eq. (9)-(11), with the sine term; Rabinovich et al. 2005
-	rabinovich_lambert,  // Gladkyy2014 eq. (9), (10), (12); Lambert et al. 2008
-	richefeu,            // Richefeu2008 eq. (4), (5), (7), (10), (11)
-	soulie,              // Soulie et al. 2006 (coefficients as printed there, see models.cpp)
-	linear_irreversible, // Roy et al. eq. (16), (17), calibration of their section 4.2
-	young_laplace_table  // exact Young-Laplace bridge, tabulated (young_laplace_table.hpp)
-};
+// ---- the one list of models: X(name, Type). The name is the user-facing identifier. -----------
+#define CAPILLARY_MODELS(X)                                                                                                                          \
+	X(weigert, Weigert)                                                                                                                          \
+	X(willett_full, WillettFull)                                                                                                                 \
+	X(willett_reduced, WillettReduced)                                                                                                           \
+	X(rabinovich, Rabinovich)                                                                                                                    \
+	X(rabinovich_lambert, RabinovichLambert)                                                                                                     \
+	X(richefeu, Richefeu)                                                                                                                        \
+	X(soulie, Soulie)                                                                                                                            \
+	X(linear_irreversible, LinearIrreversible)                                                                                                   \
+	X(young_laplace_table, YoungLaplaceTable)
 
-enum class Rupture {
+#define CAPILLARY_ENUM_(name, Type) name,
+enum class Model : std::uint8_t { CAPILLARY_MODELS(CAPILLARY_ENUM_) };
+#undef CAPILLARY_ENUM_
+// The names as one string literal (" weigert willett_full ..."), for docstrings that must be
+// literals (YADE's attribute macros).
+#define CAPILLARY_NAME_(name, Type) " " #name
+#define CAPILLARY_MODEL_NAMES_LITERAL CAPILLARY_MODELS(CAPILLARY_NAME_)
+
+enum class Rupture : std::uint8_t {
 	lian,           // (1 + theta/2) V^(1/3): Lian 1993, Richefeu2008 eq. (6), Roy eq. (15)
 	willett,        // Gladkyy2014 eq. (2), Elskamp2018 eq. (31)
 	willett_elskamp // unequal spheres and angles: Elskamp2018 eq. (32)
 };
 
+// Where a model's formula holds. V* = V/R^3 with R the harmonic mean radius of the
+// Derjaguin-equivalent pair (a wall: R = 2 R1); ratio = R_large/R_small of two spheres.
+struct Domain {
+	double      vstar_min, vstar_max; // [-]
+	double      theta_max;            // [rad], each contact angle
+	double      ratio_max;            // [-]
+	bool        wall;                 // sphere-wall and sphere-facet bridges
+	bool        equal_angles;         // the two contact angles must be equal
+	const char* source;               // where the range comes from
+};
+
+// Inputs of one bridge. R2 = wall_radius (infinity) means a sphere-wall (plane) bridge.
+struct BridgeSpec {
+	double  R1      = 0; // [m] sphere radius
+	double  R2      = 0; // [m] sphere radius, or wall_radius
+	double  volume  = 0; // [m^3] liquid bridge volume
+	double  gamma   = 0; // [N/m] surface tension
+	double  theta1  = 0; // [rad] contact angle on body 1
+	double  theta2  = 0; // [rad] contact angle on body 2
+	Model   model   = Model::willett_full;
+	Rupture rupture = Rupture::willett;
+	// linear_irreversible only: if both > 0 they are used as given, otherwise they are calibrated
+	// from `calibrate_from` by equal maximum force and equal adhesive energy (Roy et al. 4.2).
+	double linear_fmax    = 0;                   // [N] maximum adhesive force
+	double linear_kc      = 0;                   // [N/m] adhesive stiffness
+	Model  calibrate_from = Model::willett_full; // reference model (not linear_irreversible)
+	// Outside its model's domain a bridge is refused; true: the model is evaluated at the nearest
+	// point of its domain instead (see Extrapolated).
+	bool extrapolate = false;
+};
+
+// A validated bridge geometry, computed once from a BridgeSpec.
+struct Pair {
+	double R1, R2;         // [m] as given (R2 = inf: wall)
+	double r1, r2;         // [m] Derjaguin-equivalent pair (a wall: r1 = r2 = 2 R1)
+	double R;              // [m] harmonic mean of r1, r2 (Gladkyy2014 eq. 1)
+	double volume, gamma;  // [m^3], [N/m]
+	double theta1, theta2; // [rad]
+	double theta;          // [rad] mean contact angle (Elskamp2018, after eq. 15)
+	double vstar;          // V/R^3 [-]
+	double ratio;          // max(r1, r2) / min(r1, r2) [-]
+	bool   wall;
+};
+// Validates the inputs of any bridge (std::invalid_argument naming the parameter, its value and
+// the allowed range; Plausible in conventions.hpp) and derives the geometry.
+Pair pair_of(const BridgeSpec& spec);
+
+// Rupture distance [m] of a rule for a validated pair, or for the given pair (validated here).
+double rupture_distance(Rupture rule, const Pair& p);
+double rupture_distance(Rupture rule, double R1, double R2, double volume, double theta1, double theta2);
+
+// Willett's full-model coefficients f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3, theta [rad].
+std::array<double, 4> willett_coefficients(double vstar, double theta);
+
+// ---- the models ------------------------------------------------------------------------------
+// The pendular range of Willett's fits, the only range printed in our sources (Gladkyy2014
+// section 2.3: "valid for theta < 50 deg and V* < 0.1"). Models without a printed range of their
+// own are held to it: it is where Gladkyy compared them with experiments and where the contract
+// suite and the exact table check them. Lower end: 1e-5, the smallest V* of the exact table (no
+// source prints one). The Derjaguin-based models (harmonic mean radius) take any size ratio: a
+// wall is their limit R_large -> inf. The models whose formula depends on the size ratio
+// (Richefeu's h(r), Soulie's R_large) are held to ratios up to 4, the largest at which they are
+// checked here against the exact solution (no range printed in our sources).
+constexpr double inf_ratio = std::numeric_limits<double>::infinity();
+constexpr double theta_50deg = 50 * pi / 180;
+
+struct Weigert { // Gladkyy2014 eq. (5), (A2)-(A7); Weigert & Ripperger 1999
+	static constexpr const char* reference = "Gladkyy2014 eq. (5), (A2)-(A7), half gap in (A6)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Willett's range, Gladkyy2014 section 2.3 (none printed for Weigert)" };
+	static constexpr bool   monotone = true, own_rupture = false;
+	double R, volume, gamma, theta;
+	double k;      // 0.12 (2R)^3 C_theta [m^3], (A1) with (A4)
+	double force0_; // [N]
+	static Weigert make(const BridgeSpec&, const Pair&, double& rupture);
+	double         force0() const { return force0_; }
+	double         force(double a) const;
+};
+
+struct WillettFull { // Gladkyy2014 eq. (6), (7), (B1)-(B4); Willett et al. 2000
+	static constexpr const char* reference = "Gladkyy2014 eq. (6), (7), (B1)-(B4)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Gladkyy2014 section 2.3 (Willett2000): theta < 50 deg, V* < 0.1" };
+	static constexpr bool   monotone = true, own_rupture = false;
+	double f1, f2, f3, f4; // (B1)-(B4)
+	double inv_s;          // 1 / (2 sqrt(V/R)) [1/m], S+ = a inv_s (6)
+	double scale;          // 2 pi R gamma [N]
+	static WillettFull make(const BridgeSpec&, const Pair&, double& rupture);
+	// a -> 0: f3 ln S + f4 ln^2 S -> -inf as f4 < 0, so F(0) = 2 pi R gamma e^f1.
+	double force0() const { return scale * std::exp(f1); }
+	double force(double a) const
+	{
+		const double lnS = std::log(a * inv_s);                             // (6)
+		return scale * std::exp(f1 - f2 * std::exp(f3 * lnS + f4 * lnS * lnS)); // (7)
+	}
+};
+
+struct WillettReduced { // Gladkyy2014 eq. (6), (8); Willett et al. 2000 eq. (12)
+	static constexpr const char* reference = "Gladkyy2014 eq. (6), (8)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Gladkyy2014 section 2.3 (Willett2000): theta < 50 deg, V* < 0.1" };
+	static constexpr bool   monotone = true, own_rupture = false;
+	double inv_s; // 1 / (2 sqrt(V/R)) [1/m]
+	double scale; // 2 pi R gamma cos(theta) [N]
+	static WillettReduced make(const BridgeSpec&, const Pair&, double& rupture);
+	double                force0() const { return scale; }
+	double                force(double a) const
+	{
+		const double S = a * inv_s;               // (6)
+		return scale / (1 + 2.1 * S + 10 * S * S); // (8)
+	}
+};
+
+// Rabinovich's immersion distance, shared by both variants. With c = 2V/(pi R):
+// a/(2 d_sp) = a (a + sqrt(a^2 + c)) / c, the form of eq. (10) that stays finite at a = 0.
+struct RabinovichLambert { // Gladkyy2014 eq. (9), (10), (12); Lambert et al. 2008
+	static constexpr const char* reference = "Gladkyy2014 eq. (9), (10), (12)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Willett's range, Gladkyy2014 section 2.3 (none printed for Rabinovich)" };
+	static constexpr bool   monotone = true, own_rupture = false;
+	double c;     // 2V / (pi R) [m^2]
+	double scale; // 2 pi R gamma cos(theta) [N]
+	static RabinovichLambert make(const BridgeSpec&, const Pair&, double& rupture);
+	double                   force0() const { return scale; }
+	double                   force(double a) const { return scale / (1 + a * (a + std::sqrt(a * a + c)) / c); } // (12)
+};
+
+struct Rabinovich { // Gladkyy2014 eq. (9)-(11), with the sine term; Rabinovich et al. 2005
+	static constexpr const char* reference = "Gladkyy2014 eq. (9)-(11)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Willett's range, Gladkyy2014 section 2.3 (none printed for Rabinovich)" };
+	static constexpr bool   monotone = false, own_rupture = false;
+	RabinovichLambert lambert;
+	double            R, theta;
+	double            scale; // 2 pi R gamma [N]
+	static Rabinovich make(const BridgeSpec&, const Pair&, double& rupture);
+	double            force0() const { return force(0); }
+	double            force(double a) const
+	{
+		// alpha = sqrt(c / (R (sqrt(a^2 + c) + a))): eq. (9) without the 0 * inf at a = 0.
+		const double alpha = std::sqrt(lambert.c / (R * (std::sqrt(a * a + lambert.c) + a)));
+		return lambert.force(a) + scale * std::sin(alpha) * std::sin(theta + alpha); // (11), attractive
+	}
+};
+
+struct Richefeu { // Richefeu2008 eq. (4), (5), (7), (10), (11)
+	static constexpr const char* reference = "Richefeu2008 eq. (4), (5), (10), (11)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, 4, true, false, "Willett's range, Gladkyy2014 section 2.3; ratio <= 4 checked here (none printed in Richefeu2008)" };
+	static constexpr bool   monotone = true, own_rupture = false;
+	double scale;      // kappa sqrt(R1 R2) [N], eq. (4), (5)
+	double inv_lambda; // 1 / lambda [1/m], eq. (11)
+	static Richefeu make(const BridgeSpec&, const Pair&, double& rupture);
+	double          force0() const { return scale; }
+	double          force(double a) const { return scale * std::exp(-a * inv_lambda); } // (10)
+};
+
+struct Soulie { // Soulie et al. 2006, coefficients as printed there (see models.cpp)
+	static constexpr const char* reference = "Soulie2006 (coefficients as printed there)";
+	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, 4, true, false, "Willett's range, Gladkyy2014 section 2.3; ratio <= 4 checked here (none printed)" };
+	static constexpr bool   monotone = true, own_rupture = false;
+	double A;     // -1.1 V*^-0.53 / R_large [1/m]
+	double B, C;  // [-]
+	double scale; // pi gamma sqrt(R1 R2) [N]
+	static Soulie make(const BridgeSpec&, const Pair&, double& rupture);
+	double        force0() const { return force(0); }
+	double        force(double a) const { return scale * (C + std::exp(A * a + B)); }
+};
+
+struct LinearIrreversible { // Roy et al. eq. (16), (17), calibration of their section 4.2
+	static constexpr const char* reference = "Roy eq. (16), (17), section 4.2";
+	// The linear law has no range of its own; calibrated, it inherits its reference model's.
+	static constexpr Domain domain    = { 0, Plausible::vstar_max, pi / 2, inf_ratio, true, false,
+                                           "none (calibrated: the reference model's)" };
+	static constexpr bool   monotone = true, own_rupture = true;
+	double fmax; // [N]
+	double kc;   // [N/m]
+	static LinearIrreversible make(const BridgeSpec&, const Pair&, double& rupture);
+	double                    force0() const { return fmax; }
+	double                    force(double a) const { return std::max(0.0, fmax - kc * a); } // Roy (16)
+};
+
+struct YoungLaplaceTable { // exact Young-Laplace bridge, tabulated (young_laplace_table.hpp)
+	static constexpr const char* reference = "Young-Laplace solver, tabulated (data/young_laplace_table.csv)";
+	static constexpr Domain domain    = { 1e-5, 0.1, yltable::theta_max, 4, true, true, "the table's nodes (data/young_laplace_table.csv)" };
+	// Not monotone: at large contact angles the exact force first grows slightly with the gap.
+	static constexpr bool monotone = false, own_rupture = true;
+	using Coefficients            = std::array<double, yltable::n_coefficients>;
+	std::shared_ptr<const Coefficients> k; // the bridge's Hermite segments of 1/F (shared by copies)
+	double                              force0_;
+	static YoungLaplaceTable make(const BridgeSpec&, const Pair&, double& rupture);
+	double                   force0() const { return force0_; }
+	double                   force(double a) const { return yltable::force(k->data(), a); }
+};
+
+// Extrapolation (BridgeSpec::extrapolate): the model M of the nearest in-domain bridge (V*,
+// contact angles and size ratio clamped to M::domain), with its gap range stretched to the
+// actual bridge's rupture distance and its force scaled by R cos(theta) / (R_c cos(theta_c)),
+// the Derjaguin scaling of the force at contact. The result is finite, non-negative, zero beyond
+// rupture and monotone where M is, because the in-domain bridge is (the contract suite).
+template <class M> struct Extrapolated {
+	M      m;
+	double gap_scale;   // rupture of the in-domain bridge / actual rupture [-]
+	double force_scale; // [-]
+	double force0() const { return force_scale * m.force0(); }
+	double force(double a) const { return force_scale * m.force(a * gap_scale); }
+};
+
+template <class... M> struct ModelSet;
+template <class... M> struct ModelSet<void, M...> {
+	// Index 0: no bridge; 1..n: the models in the order of CAPILLARY_MODELS; n+1..2n: extrapolated.
+	using Variant                   = std::variant<std::monostate, M..., Extrapolated<M>...>;
+	static constexpr std::size_t n = sizeof...(M);
+};
+#define CAPILLARY_TYPE_(name, Type) , Type
+using Models = ModelSet<void CAPILLARY_MODELS(CAPILLARY_TYPE_)>;
+#undef CAPILLARY_TYPE_
+
+// One bridge: its model (the variant's index) and that model's invariants only.
+struct Bridge {
+	Models::Variant m;
+	double          rupture = 0; // [m] gap at which the bridge breaks
+	double          force0  = 0; // [N] force at contact, F(a <= 0)
+	Model           model() const { return Model((m.index() - 1) % Models::n); }
+	bool            extrapolated() const { return m.index() > Models::n; }
+};
+
+// Validates (std::invalid_argument naming the parameter, its value and its allowed range) and
+// computes the invariants.
+Bridge make_bridge(const BridgeSpec& spec);
+
+// Capillary force [N] at gap a [m]: 0 for a > rupture (and a NaN gap), F(0) for a <= 0.
+inline double bridge_force(const Bridge& b, double a)
+{
+	if (!(a <= b.rupture)) return 0;
+	if (a <= 0) return b.force0;
+	return std::visit(
+	        [a](const auto& model) -> double {
+		        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, std::monostate>) return 0;
+		        else return model.force(a);
+	        },
+	        b.m);
+}
+
+// One-shot convenience: make_bridge() + bridge_force().
+double force(const BridgeSpec& spec, double a);
+
+// Adhesive energy [J] of a bridge: the integral of F over [0, rupture]. Bounded cost: throws
+// std::runtime_error if the quadrature does not converge within its budget of evaluations.
+double adhesive_energy(const Bridge& b);
+
+// The model table, derived from CAPILLARY_MODELS.
 struct ModelInfo {
 	Model       model;
 	const char* name;
 	const char* reference;
 	bool        monotone; // force non-increasing in the gap over the whole bridge
+	bool        own_rupture;
+	Domain      domain;
 };
 struct RuptureInfo {
 	Rupture     rule;
 	const char* name;
 	const char* reference;
 };
-// The one table of models and rupture rules (names are the user-facing identifiers).
 const std::vector<ModelInfo>&   models();
 const std::vector<RuptureInfo>& rupture_rules();
+const ModelInfo&                info(Model m);
 Model                           model_from_name(const std::string& name);   // throws std::invalid_argument
 Rupture                         rupture_from_name(const std::string& name); // throws std::invalid_argument
 const char*                     name_of(Model m);
 const char*                     name_of(Rupture r);
-std::string                     model_names();   // "weigert, willett_full, ..." for error messages
+std::string                     model_names(); // "weigert, willett_full, ..." for error messages
 std::string                     rupture_names();
-
-constexpr double wall_radius = std::numeric_limits<double>::infinity();
-
-// Inputs of one bridge. R2 = wall_radius (infinity) means a sphere-wall (plane) bridge.
-struct BridgeSpec {
-	double  R1     = 0;     // [m] sphere radius
-	double  R2     = 0;     // [m] sphere radius, or wall_radius
-	double  volume = 0;     // [m^3] liquid bridge volume
-	double  gamma  = 0;     // [N/m] surface tension
-	double  theta1 = 0;     // [rad] contact angle on body 1
-	double  theta2 = 0;     // [rad] contact angle on body 2
-	Model   model  = Model::willett_full;
-	Rupture rupture = Rupture::willett;
-	// linear_irreversible only: if both > 0 they are used as given, otherwise they are calibrated
-	// from `calibrate_from` by equal maximum force and equal adhesive energy (Roy et al. 4.2).
-	double linear_fmax = 0;                       // [N] maximum adhesive force
-	double linear_kc   = 0;                       // [N/m] adhesive stiffness
-	Model  calibrate_from = Model::willett_full;  // reference model (not linear_irreversible)
-};
-
-// Per-bridge invariants, computed once by make_bridge().
-struct Bridge {
-	Model  model;
-	double R;         // [m] effective radius, harmonic mean 2R1R2/(R1+R2) (Gladkyy2014 eq. 1)
-	double gamma;     // [N/m]
-	double theta;     // [rad] mean contact angle (theta1+theta2)/2 (Elskamp2018, after eq. 15)
-	double volume;    // [m^3]
-	double rupture;   // [m] gap at which the bridge breaks
-	double force0;    // [N] force at contact, F(a = 0)
-	std::array<double, 53> k; // model-specific invariants, documented in models.cpp (young_laplace_table uses all)
-};
-
-// Validates (std::invalid_argument naming the parameter and its allowed range) and computes the
-// invariants. A wall (R2 = infinity) is treated as the Derjaguin-equivalent pair of two equal
-// spheres of radius 2*R1, whose harmonic and geometric means are both 2*R1: the sphere-plane
-// limit 4*pi*R1*gamma*cos(theta) for every model.
-Bridge make_bridge(const BridgeSpec& spec);
-
-// Capillary force [N] at gap a [m]: 0 for a > rupture, F(0) for a <= 0. Never NaN or inf.
-double bridge_force(const Bridge& b, double a);
-
-// Rupture distance [m] of a rule for the given pair (R2 may be wall_radius).
-double rupture_distance(Rupture rule, double R1, double R2, double volume, double theta1, double theta2);
-
-// One-shot convenience: make_bridge() + bridge_force().
-double force(const BridgeSpec& spec, double a);
-
-// Willett's full-model coefficients f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3, theta [rad].
-std::array<double, 4> willett_coefficients(double vstar, double theta);
-
-// Adhesive energy [J] of a bridge: integral of F over [0, rupture].
-double adhesive_energy(const Bridge& b);
 
 } // namespace capillary

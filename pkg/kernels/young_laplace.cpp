@@ -2,6 +2,8 @@
 // Internally all lengths are scaled by R1 (sphere 1 has radius 1); P is scaled by 1/R1.
 #include "young_laplace.hpp"
 
+#include "conventions.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,7 +16,6 @@ namespace yl {
 
 	namespace {
 
-		constexpr double pi  = 3.14159265358979323846;
 		const double     inf = std::numeric_limits<double>::infinity();
 
 		using State = std::array<double, 4>; // x, y, phi, W = integral of pi y^2 dx
@@ -259,12 +260,12 @@ namespace yl {
 		: tol_(tolerance)
 	{
 		if (theta2 < 0) theta2 = theta1;
-		if (!(R1 > 0 && std::isfinite(R1))) throw std::invalid_argument("R1 = " + std::to_string(R1) + " m is outside the allowed range (0, inf)");
-		if (!(R2 > 0)) throw std::invalid_argument("R2 = " + std::to_string(R2) + " m is outside the allowed range (0, inf] (inf: plane)");
-		if (!(volume > 0 && std::isfinite(volume))) throw std::invalid_argument("volume = " + std::to_string(volume) + " m^3 is outside the allowed range (0, inf)");
+		if (!(R1 > 0 && std::isfinite(R1))) throw std::invalid_argument("R1 = " + format_value(R1) + " m is outside the allowed range (0, inf)");
+		if (!(R2 > 0)) throw std::invalid_argument("R2 = " + format_value(R2) + " m is outside the allowed range (0, inf] (inf: plane)");
+		if (!(volume > 0 && std::isfinite(volume))) throw std::invalid_argument("volume = " + format_value(volume) + " m^3 is outside the allowed range (0, inf)");
 		for (double t : { theta1, theta2 })
-			if (!(t >= 0 && t < pi / 2)) throw std::invalid_argument("theta = " + std::to_string(t) + " rad is outside the allowed range [0, pi/2)");
-		if (!(tolerance > 0 && tolerance < 1e-3)) throw std::invalid_argument("tolerance = " + std::to_string(tolerance) + " is outside the allowed range (0, 1e-3)");
+			if (!(t >= 0 && t < pi / 2)) throw std::invalid_argument("theta = " + format_value(t) + " rad is outside the allowed range [0, pi/2)");
+		if (!(tolerance > 0 && tolerance < 1e-3)) throw std::invalid_argument("tolerance = " + format_value(tolerance) + " is outside the allowed range (0, 1e-3)");
 		R1_ = R1, R2_ = R2 / R1, V_ = volume / (R1 * R1 * R1), t1_ = theta1, t2_ = theta2;
 		const bool plane = std::isinf(R2_);
 
@@ -281,8 +282,8 @@ namespace yl {
 		L_                      = rho; // length scale of the matching residual
 		auto at_contact = [&](const std::array<double, 3>& v, std::array<double, 3>& r) { return residual(v[0], v[1], v[2], 0, Vt, r); };
 		auto fail = [&] {
-			throw std::runtime_error("Young-Laplace: no pendular bridge at contact for V* = V/R1^3 = " + std::to_string(Vt) + ", theta = "
-			                         + std::to_string(theta1) + " rad");
+			throw std::runtime_error("Young-Laplace: no pendular bridge at contact for V* = V/R1^3 = " + format_value(Vt) + ", theta = "
+			                         + format_value(theta1) + " rad");
 		};
 		if (!newton(u, { b1, u[1], std::max(1.0, std::abs(u[2])) }, at_contact)) fail();
 		for (double factor = 2; Vt < V_;) {
@@ -320,7 +321,7 @@ namespace yl {
 			Point next;
 			if (!on_arc(last, t, ds, last, next)) {
 				ds /= 2;
-				if (ds < 1e-8) throw std::runtime_error("Young-Laplace: continuation stalled at filling angle " + std::to_string(last.beta1));
+				if (ds < 1e-8) throw std::runtime_error("Young-Laplace: continuation stalled at filling angle " + format_value(last.beta1));
 				continue;
 			}
 			double     step;
@@ -336,7 +337,7 @@ namespace yl {
 			const double det = jacobian_det(next);
 			if (!std::isfinite(det)) { // the perturbed bridges do not exist: as a failed step
 				ds /= 2;
-				if (ds < 1e-8) throw std::runtime_error("Young-Laplace: continuation stalled at filling angle " + std::to_string(last.beta1));
+				if (ds < 1e-8) throw std::runtime_error("Young-Laplace: continuation stalled at filling angle " + format_value(last.beta1));
 				continue;
 			}
 			if (next.a >= last.a && ds > 1e-4 && !(std::abs(det) > 0.3 * std::abs(det_last) && det * det_last > 0)) {
@@ -368,7 +369,7 @@ namespace yl {
 				auto at = [&](double sa) {
 					Point p;
 					if (!on_arc(last, t, sa, last, p) && !on_arc(last, t, sa, sa > 0 ? next : before, p))
-						throw std::runtime_error("Young-Laplace: no bridge near the fold at filling angle " + std::to_string(last.beta1));
+						throw std::runtime_error("Young-Laplace: no bridge near the fold at filling angle " + format_value(last.beta1));
 					return p;
 				};
 				double s1 = hi - gr * (hi - lo), s2 = lo + gr * (hi - lo);
@@ -431,9 +432,9 @@ namespace yl {
 	{
 		const double a = gap / R1_;
 		if (!(a >= 0 && gap <= rupture_))
-			throw std::invalid_argument("gap = " + std::to_string(gap) + " m is outside the allowed range [0, rupture gap = " + std::to_string(rupture_)
+			throw std::invalid_argument("gap = " + format_value(gap) + " m is outside the allowed range [0, rupture gap = " + format_value(rupture_)
 			                            + " m]");
-		if (!(gamma > 0)) throw std::invalid_argument("gamma = " + std::to_string(gamma) + " N/m is outside the allowed range (0, inf)");
+		if (!(gamma > 0)) throw std::invalid_argument("gamma = " + format_value(gamma) + " N/m is outside the allowed range (0, inf)");
 		// Bracket on the stable branch; Newton on (beta1, s2, P) at this gap from the interpolated
 		// guess, or, near the fold where that system becomes singular, the Illinois method on the
 		// arclength of the chord between the bracketing branch points (pseudo-arclength corrector).
@@ -459,7 +460,7 @@ namespace yl {
 				p = lo;
 				illinois(0, d, lo.a - a, hi.a - a, [&](double sm) {
 					if (!on_arc(lo, t, sm, lo, p) && !on_arc(lo, t, sm, sm < d / 2 ? lo : hi, p) && !on_arc(hi, back, d - sm, hi, p))
-						throw std::runtime_error("Young-Laplace: no bridge found at gap " + std::to_string(gap));
+						throw std::runtime_error("Young-Laplace: no bridge found at gap " + format_value(gap));
 					return p.a - a;
 				}, 1e-15, 1e-14 * (1 + a));
 			}

@@ -1,5 +1,7 @@
 #include "young_laplace_table.hpp"
 
+#include "conventions.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -10,7 +12,6 @@ namespace yltable {
 
 	namespace {
 
-		constexpr double pi      = 3.14159265358979323846;
 		constexpr int    row_len = 4 + n_w; // ln_vstar, theta, rho, ln(a_r/Rh), ln(F/(2 pi Rh gamma)) at the tau nodes
 
 		const double table[] = {
@@ -64,12 +65,12 @@ namespace yltable {
 		const double rho = plane ? 0 : rs / rl;
 		const double Rh  = plane ? 2 * R1 : 2 * R1 * R2 / (R1 + R2);
 		const double lnv = std::log(volume / (Rh * Rh * Rh));
-		if (!(std::abs(theta1 - theta2) <= 1e-12)) outside("theta1 = " + std::to_string(theta1) + " and theta2 = " + std::to_string(theta2) + " rad differ; the table holds equal contact angles");
+		if (!(std::abs(theta1 - theta2) <= 1e-12)) outside("theta1 = " + format_value(theta1) + " and theta2 = " + format_value(theta2) + " rad differ; the table holds equal contact angles");
 		if (!(lnv >= lnv_min - 1e-12 && lnv <= lnv_max + 1e-12))
-			outside("V* = V/Rh^3 = " + std::to_string(std::exp(lnv)) + " is outside the table's range [1e-5, 0.1]");
-		if (!(theta1 >= 0 && theta1 <= theta_max + 1e-12)) outside("theta = " + std::to_string(theta1) + " rad is outside the table's range [0, 50 deg]");
+			outside("V* = V/Rh^3 = " + format_value(std::exp(lnv)) + " is outside the table's range [1e-5, 0.1]");
+		if (!(theta1 >= 0 && theta1 <= theta_max + 1e-12)) outside("theta = " + format_value(theta1) + " rad is outside the table's range [0, 50 deg]");
 		if (!(plane || rho >= rho_nodes[1] - 1e-12))
-			outside("R_small/R_large = " + std::to_string(rho) + " is outside the table's range [1/4, 1] (or a plane)");
+			outside("R_small/R_large = " + format_value(rho) + " is outside the table's range [1/4, 1] (or a plane)");
 
 		double xs[4], wv[4], wt[4], wr[4] = { 1, 0, 0, 0 };
 		std::array<double, n_lnv>   lnvs;

@@ -11,7 +11,10 @@ Works in plain ``python3`` and inside ``yade``. Example::
 ``force(model, gap, R1, R2, volume, gamma, theta=0, theta2=None, rupture='willett', ...)``
 returns the attractive force [N]; ``bridge(...)`` the per-bridge invariants (effective radius,
 rupture distance, F(0), adhesive energy); ``rupture_distance(rule, R1, R2, volume, theta)``;
-``models()`` and ``rupture_rules()`` list names with references. Use ``R2=float('inf')`` for a
+``models()`` lists every model as a dict (name, reference, monotone, own_rupture, and its validity
+``domain``: V* = V/R^3, contact angle, size ratio, walls, with the source of the range);
+``rupture_rules()`` lists the rules with references. Outside its model's domain a bridge is refused
+unless ``extrapolate=True``. Use ``R2=float('inf')`` for a
 sphere-wall bridge. Bad input raises ValueError naming the parameter and its allowed range.
 
 ``YoungLaplaceBridge(R1, R2, volume, theta1)`` is the exact solver: ``.rupture_gap`` and
@@ -23,5 +26,5 @@ from _yade_capillary_kernels import (YoungLaplaceBridge, bridge, force, models, 
 __all__ = ["YoungLaplaceBridge", "bridge", "force", "models", "rupture_distance", "rupture_rules", "table_axes",
            "willett_coefficients", "MODEL_NAMES", "RUPTURE_NAMES"]
 
-MODEL_NAMES = [m[0] for m in models()]
+MODEL_NAMES = [m["name"] for m in models()]
 RUPTURE_NAMES = [r[0] for r in rupture_rules()]

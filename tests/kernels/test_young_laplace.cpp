@@ -16,7 +16,6 @@
 using namespace capillary;
 
 namespace {
-constexpr double pi  = 3.14159265358979323846;
 const double     inf = std::numeric_limits<double>::infinity();
 double           rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 } // namespace

@@ -1,0 +1,63 @@
+// Conventions shared by every capillary kernel, in one place: pi, the wall as a sphere of
+// infinite radius and its Derjaguin-equivalent pair, the harmonic mean radius, the limits of
+// physically meaningful input, and the wording of out-of-range errors.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace capillary {
+
+constexpr double pi = 3.14159265358979323846;
+
+// A wall or facet is a sphere of infinite radius (R2 = wall_radius).
+constexpr double wall_radius = std::numeric_limits<double>::infinity();
+inline bool      is_wall(double R) { return std::isinf(R) && R > 0; }
+
+// Gladkyy2014 eq. (1): effective radius of two spheres.
+inline double harmonic_mean_radius(double r1, double r2) { return 2 * r1 * r2 / (r1 + r2); }
+
+// Derjaguin: a sphere R1 against a plane is equivalent to two equal spheres of radius 2 R1, whose
+// harmonic and geometric means are both 2 R1, so that every model gives the sphere-plane limit
+// F(0) = 4 pi R1 gamma cos(theta).
+inline void equivalent_pair(double R1, double R2, double& r1, double& r2)
+{
+	if (is_wall(R2)) r1 = r2 = 2 * R1;
+	else {
+		r1 = R1;
+		r2 = R2;
+	}
+}
+
+// Physically meaningful input, whatever the model: outside these limits a value is a mistake
+// (a unit error, an uninitialised variable), not a bridge. Radii from a nanometre to a kilometre;
+// surface tensions from ultra-low interfacial tensions (~1e-6 N/m) to molten metals (~2 N/m);
+// a pendular bridge holds less liquid than the particles (V* = V/R^3 <= 1, R the harmonic mean).
+struct Plausible {
+	static constexpr double radius_min = 1e-9, radius_max = 1e3;   // [m]
+	static constexpr double gamma_min = 1e-7, gamma_max = 10;      // [N/m]
+	static constexpr double vstar_min = 1e-15, vstar_max = 1;      // [-]
+};
+
+// Formats a value with enough digits to tell 1e-7 from 4e-7 (std::to_string would print 0.000000).
+inline std::string format_value(double x)
+{
+	std::ostringstream s;
+	s.precision(10);
+	s << x;
+	return s.str();
+}
+
+// The one wording of out-of-range errors: "<name> = <value> <unit> is outside the allowed range
+// <range>[; <hint>]". Callers (Python bindings, the YADE layer) report it as ValueError.
+[[noreturn]] inline void out_of_range(const std::string& name, double value, const std::string& range, const std::string& unit,
+                                      const std::string& hint = "")
+{
+	throw std::invalid_argument(name + " = " + format_value(value) + (unit.empty() ? "" : " " + unit) + " is outside the allowed range " + range
+	                            + (hint.empty() ? "" : "; " + hint));
+}
+
+} // namespace capillary
