@@ -152,10 +152,10 @@ public:
 		"Separated with a bridge: the capillary force of the bridge's model along the line of centres. A bridge needs "
 		"the interaction to survive beyond contact: use Bo1_Sphere_Aabb(aabbEnlargeFactor=k) and "
 		"Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=k) with k large enough for the rupture distance.",
-		((OpenMPAccumulator<int>, nBridges, , Attr::noSave | Attr::readonly, "Number of liquid bridges that exist now [-]."))
-		((OpenMPAccumulator<Real>, liquidVolume, , Attr::noSave | Attr::readonly, "Liquid volume in the bridges that exist now [m^3]."))
-		((OpenMPAccumulator<Real>, liquidFormed, , Attr::noSave | Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014)."))
-		((OpenMPAccumulator<Real>, liquidReleased, , Attr::noSave | Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume.")),
+		((OpenMPAccumulator<int>, nBridges, , Attr::readonly, "Number of liquid bridges that exist now [-]. Saved by O.save."))
+		((OpenMPAccumulator<Real>, liquidVolume, , Attr::readonly, "Liquid volume in the bridges that exist now [m^3]. Saved by O.save."))
+		((OpenMPAccumulator<Real>, liquidFormed, , Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014). Saved by O.save."))
+		((OpenMPAccumulator<Real>, liquidReleased, , Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume. Saved by O.save.")),
 		/*ctor*/,
 		/*py*/);
 	// clang-format on
