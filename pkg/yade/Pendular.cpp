@@ -258,8 +258,11 @@ bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys
 	if (geom.penetrationDepth < 0) { // separated
 		phys.shearForce = Vector3r::Zero();
 		if (!phys.active) {
+			// No bridge yet (or dry): nothing to keep. Returning false resets the interaction, so the
+			// collider removes it once the bounding boxes part, and the Ig2 makes it real again at
+			// contact, where the bridge forms; a pair that stays close merely gets new physics.
 			phys.normalForce = Vector3r::Zero();
-			return phys.wet; // a wet pair waits for its first contact; a dry one is dropped
+			return false;
 		}
 		const Real gap = -geom.penetrationDepth;
 		if (gap > phys.bridge.rupture) {

@@ -149,9 +149,11 @@ public:
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
 		"Contact law of yade-capillary. In contact: linear viscoelastic normal force without attraction while unloading, "
 		"incremental tangential spring-dashpot with Coulomb friction (Gladkyy2014 eq. 3-4), plus F(0) if forceInContact. "
-		"Separated with a bridge: the capillary force of the bridge's model along the line of centres. A bridge needs "
-		"the interaction to survive beyond contact: use Bo1_Sphere_Aabb(aabbEnlargeFactor=k) and "
-		"Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=k) with k large enough for the rupture distance.",
+		"Separated with a bridge: the capillary force of the bridge's model along the line of centres; beyond the rupture "
+		"distance the bridge breaks and the interaction is removed. Separated without a bridge (before the first contact, "
+		"with a detection factor > 1): no force, and the interaction is reset (returns false), so that it is removed once "
+		"the bounding boxes part and made again at contact; a real interaction keeps its geometry until the law ends it, so "
+		"no enlarged detection range is needed for the bridge.",
 		((OpenMPAccumulator<int>, nBridges, , Attr::readonly, "Number of liquid bridges that exist now [-]. Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidVolume, , Attr::readonly, "Liquid volume in the bridges that exist now [m^3]. Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidFormed, , Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014). Saved by O.save."))

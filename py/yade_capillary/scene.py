@@ -13,7 +13,8 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     its totals (nBridges, liquidVolume, ...) can be read as e.g. ``capillaryLaw.nBridges``.
     A bridge forms at contact, so no enlarged detection range is needed: once real, an interaction
     keeps its geometry until the law ends it at rupture. detection_factor > 1 (aabbEnlargeFactor and
-    interactionDetectionFactor) creates interactions before contact, without bridges. loop: an
+    interactionDetectionFactor) creates interactions before contact, without bridges; the law
+    resets them while the pair is apart, so they are removed when the spheres move away. loop: an
     InteractionLoop to use instead of ours (e.g. YADE's built-in capillary law, for comparisons).
     """
     return [

@@ -61,4 +61,33 @@ ck.true(L.nBridges == 1, "one bridge left after one rupture following O.load (nB
 ck.true(L.liquidVolume > 0, "liquid volume stays positive after the rupture (%g m^3)" % L.liquidVolume)
 ck.close(L.liquidFormed - L.liquidReleased, L.liquidVolume, 1e-12, "liquidFormed - liquidReleased after O.load and rupture", "liquidVolume")
 
+# 3. Pre-contact interactions (detection_factor > 1) are erased when the spheres move apart; a
+#    pair that touches forms a bridge and keeps it until rupture.
+for k in (1.0, 1.3, 2.0, 3.0):
+    gap = 0.5 * (k - 1) * 2 * R if k > 1 else 0.0  # inside the detection range, not touching
+    i, j = pair(PendularMat(**good), PendularMat(**good), gap=gap, eng=engines(detection_factor=k))
+    for _ in range(3):
+        O.step()
+    for x in (4 * R, 8 * R, 10 * R):  # then apart: centres 6 diameters apart at the end
+        O.bodies[j].state.pos = (2 * R + x, 0, 0)
+        for _ in range(3):
+            O.step()
+    left = O.interactions.has(i, j)
+    ck.true(not left, "detection_factor %g: no interaction left 5 diameters apart (has=%s, real=%s)"
+            % (k, left, left and O.interactions[i, j].isReal))
+    # touching pair: bridge forms and lives until rupture
+    i, j = pair(PendularMat(**good), PendularMat(**good), gap=-1e-9, eng=engines(detection_factor=k))
+    O.step()
+    I = O.interactions[i, j]
+    ck.true(I.isReal and I.phys.active, "detection_factor %g: touching pair forms a bridge" % k)
+    sc = I.phys.sCrit
+    O.bodies[j].state.pos = (2 * R + 0.9 * sc, 0, 0)
+    O.step()
+    ck.true(O.interactions.has(i, j) and O.interactions[i, j].isReal and O.interactions[i, j].phys.active,
+            "detection_factor %g: bridge alive at 0.9 sCrit" % k)
+    O.bodies[j].state.pos = (2 * R + 1.1 * sc, 0, 0)
+    O.step()
+    O.step()
+    ck.true(not (O.interactions.has(i, j) and O.interactions[i, j].isReal), "detection_factor %g: no real interaction after rupture beyond sCrit" % k)
+
 ck.finish()
