@@ -7,6 +7,9 @@
 #include <core/GlobalEngine.hpp>
 #include "models.hpp"
 
+#include <limits>
+#include <mutex>
+
 namespace yade {
 
 class PendularMat : public Material {
@@ -107,36 +110,49 @@ REGISTER_SERIALIZABLE(PendularPhys);
 class Ip2_PendularMat_PendularMat_PendularPhys : public IPhysFunctor {
 public:
 	void go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
-	shared_ptr<PendularPhys> makePhys(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I);
+	// For PendularCheck, in serial code: the first input error met in the current step of `scene`
+	// ("" if none; an error of an earlier step or another scene is dropped).
+	std::string takeError(Scene* scene);
 	FUNCTOR2D(PendularMat, PendularMat);
+	DECLARE_LOGGER;
+
+private:
+	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void setLiquid(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void report(const std::string& message, const Interaction& I);
+	// Written from InteractionLoop's OpenMP threads, hence the lock.
+	std::mutex  errorMutex;
+	bool        errorPending = false;
+	std::string error;
+	Scene*      errorScene       = nullptr;
+	long        errorIter        = -1;
+	long        stopAtIterBefore = 0;
+
+public:
 	// clang-format off
 	YADE_CLASS_BASE_DOC(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
 		"Creates :yref:`PendularPhys` from two :yref:`PendularMat`. Mixing rules: tc, en, et arithmetic means; kn, cn, ks, cs "
 		"in series; friction angle the smaller; Vb and gamma arithmetic means; contact angles kept per body; model, rupture rule, "
 		"forceInContact and linear parameters must be equal (else an error). Effective mass m1 m2/(m1+m2), where a body that is "
 		"not dynamic counts as infinitely heavy (unless neither is dynamic). A body whose shape is not a Sphere (wall, facet) "
-		"is a plane for the bridge.");
+		"is a plane for the bridge. Input errors are raised by :yref:`PendularCheck`: if only the liquid is wrong, the pair "
+		"gets the contact law without a bridge; if the contact parameters are wrong, the interaction is reset and the error "
+		"comes again at every step.");
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 
-// Errors found while interactions are created (inside InteractionLoop's OpenMP region, where an
-// exception would terminate the process) are recorded here; PendularCheck raises them as a
-// Python exception right after the InteractionLoop of the same step.
-namespace pendular {
-	void        reportError(const std::string& message); // keeps the first message until taken
-	std::string takeError();                             // returns "" if there is none
-}
-
 class PendularCheck : public GlobalEngine {
 public:
 	void action() override;
+	DECLARE_LOGGER;
 	// clang-format off
 	YADE_CLASS_BASE_DOC(PendularCheck, GlobalEngine,
-		"Raises (as a Python ValueError from O.step/O.run) the first input error that :yref:`Ip2_PendularMat_PendularMat_PendularPhys` "
-		"met while creating interactions in this step, e.g. two materials with different models or a bridge outside its model's "
-		"domain. Place it right after the InteractionLoop (yade_capillary.scene.engines does). Without it, such an error stops "
-		"the simulation at the end of the step and is printed, and the interaction gets no bridge and no contact force.");
+		"Raises (as a Python ValueError from O.step, O.run(n, True) and O.wait) the first input error that "
+		":yref:`Ip2_PendularMat_PendularMat_PendularPhys` met while creating interactions in this step of this scene, e.g. two "
+		"materials with different models or a bridge outside its model's domain. Place it right after the InteractionLoop "
+		"(yade_capillary.scene.engines does). Without it, an input error stops the simulation at the end of the step and is "
+		"logged.");
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(PendularCheck);

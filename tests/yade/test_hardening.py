@@ -61,6 +61,28 @@ ck.true(L.nBridges == 1, "one bridge left after one rupture following O.load (nB
 ck.true(L.liquidVolume > 0, "liquid volume stays positive after the rupture (%g m^3)" % L.liquidVolume)
 ck.close(L.liquidFormed - L.liquidReleased, L.liquidVolume, 1e-12, "liquidFormed - liquidReleased after O.load and rupture", "liquidVolume")
 
+# 2. An input error stays with its scene: a scene without PendularCheck leaves no error behind
+#    for the next scene after O.reset().
+no_check = [e for e in engines() if not isinstance(e, PendularCheck)]
+pair(PendularMat(**good), PendularMat(**dict(good, model="richefeu")), eng=no_check)
+O.step()  # the error is printed and the run stops after this step; nothing raises it
+pair(PendularMat(**good), PendularMat(**good))
+try:
+    O.step()
+    ck.true(O.iter == 1, "a valid scene after O.reset() steps without the error of the previous scene")
+except ValueError as e:
+    ck.true(False, "a valid scene after O.reset() raised the previous scene's error: %s" % e)
+# The same engine list reused after O.reset(): its stale error is not raised either.
+shared = engines()
+pair(PendularMat(**good), PendularMat(**dict(good, model="richefeu")), eng=shared)
+ck.raises(ValueError, O.step, ["model"], "error raised in its own scene")
+pair(PendularMat(**good), PendularMat(**good), eng=shared)
+try:
+    O.step()
+    ck.true(True, "reused engine list on a valid scene")
+except ValueError as e:
+    ck.true(False, "reused engine list raised a stale error: %s" % e)
+
 # 3. Pre-contact interactions (detection_factor > 1) are erased when the spheres move apart; a
 #    pair that touches forms a bridge and keeps it until rupture.
 for k in (1.0, 1.3, 2.0, 3.0):
@@ -90,4 +112,54 @@ for k in (1.0, 1.3, 2.0, 3.0):
     O.step()
     ck.true(not (O.interactions.has(i, j) and O.interactions[i, j].isReal), "detection_factor %g: no real interaction after rupture beyond sCrit" % k)
 
+# 4. linear_irreversible parameters are compared by value: 1e-7 N and 4e-7 N differ.
+lin = dict(good, model="linear_irreversible", linearKc=1.0)
+pair(PendularMat(**dict(lin, linearFmax=1e-7)), PendularMat(**dict(lin, linearFmax=4e-7)))
+ck.raises(ValueError, O.step, ["linearFmax", "1e-07", "4e-07"], "linearFmax 1e-7 vs 4e-7 N")
+pair(PendularMat(**dict(lin, linearFmax=1e-7, linearKc=1e-7)), PendularMat(**dict(lin, linearFmax=1e-7, linearKc=3e-7)))
+ck.raises(ValueError, O.step, ["linearKc", "1e-07", "3e-07"], "linearKc 1e-7 vs 3e-7 N/m")
+pair(PendularMat(**dict(lin, linearFmax=1e-7)), PendularMat(**dict(lin, linearFmax=1e-7)))
+O.step()
+ck.true(O.interactions[0, 1].phys.active, "equal linear parameters form a bridge")
+
+
+# 5. After a caught error the pair is not inert: with valid contact parameters the spheres
+#    bounce (no bridge); with invalid contact parameters the error is raised again.
+def approach(mat_a, mat_b, steps=400):
+    """Two free spheres approaching at 0.1 m/s; returns (errors caught, final relative velocity, min distance)."""
+    pair(mat_a, mat_b, gap=2e-6, fixed=False)
+    O.dt = 1e-6
+    O.bodies[0].state.vel = (0.1, 0, 0)
+    O.bodies[1].state.vel = (-0.1, 0, 0)
+    errors, dmin = 0, float("inf")
+    for _ in range(steps):
+        try:
+            O.step()
+        except ValueError:
+            errors += 1
+        dmin = min(dmin, O.bodies[1].state.pos[0] - O.bodies[0].state.pos[0])
+    return errors, O.bodies[1].state.vel[0] - O.bodies[0].state.vel[0], dmin
+
+
+errors, vrel, dmin = approach(PendularMat(**good), PendularMat(**dict(good, model="richefeu")))
+ck.true(errors >= 1, "bridge refused: the error is raised (%d times)" % errors)
+ck.true(vrel > 0, "bridge refused, contact parameters valid: the spheres bounce (relative velocity %g m/s)" % vrel)
+ck.true(dmin > 2 * R * 0.99, "no pass-through (closest centre distance %g m)" % dmin)
+errors, vrel, dmin = approach(PendularMat(**good), PendularMat(wet=True, Vb=1e-11, gamma=0.05, density=2500), steps=60)
+ck.true(errors >= 40, "contact parameters invalid: the error is raised at every step after contact (%d of 60, contact at ~10)" % errors)
+
+# 6. O.run(n, True) raises ValueError naming the parameter, like O.step().
+pair(PendularMat(**good), PendularMat(**dict(good, model="richefeu")))
+ck.raises(ValueError, lambda: O.run(5, True), ["model", "richefeu"], "O.run(5, True) with different models")
+pair(PendularMat(**good), PendularMat(**dict(good, rupture="lian")))
+O.run(5)
+ck.raises(ValueError, O.wait, ["rupture", "lian"], "O.run(5); O.wait() with different rupture rules")
+# After a caught error, O.run() continues to the stopAtIter the user set (the error does not move it).
+pair(PendularMat(**good), PendularMat(**dict(good, model="richefeu")))
+O.stopAtIter = 10
+O.run()
+ck.raises(ValueError, O.wait, ["model"], "O.run() with different models")
+O.run()
+O.wait()
+ck.true(O.iter == 10, "O.run() after a caught error stops at the stopAtIter set before (iter %d, expected 10)" % O.iter)
 ck.finish()
