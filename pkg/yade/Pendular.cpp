@@ -57,7 +57,36 @@ namespace {
 		}
 	}
 
+	// Stability limit of YADE's leapfrog (NewtonIntegrator: v(t+dt/2) = v(t-dt/2) + dt F(t)/m,
+	// x(t+dt) = x(t) + dt v(t+dt/2)) for m x'' + c x' + k x = 0 with the damping force taken from
+	// v(t-dt/2), as the Law2 does. With h = w0 dt, w0^2 = k/m, d = c dt/m, the step matrix of
+	// (x, v) has trace 2 - h^2 - d and determinant 1 - d; Jury's conditions |1 - d| < 1 and
+	// 1 + trace + det > 0 give h^2 + 2d < 4, i.e. dt < (2/w0)(sqrt(1 + z^2) - z) with
+	// z = c/(2 sqrt(k m)): 2/w0 undamped, smaller with damping. It is the central-difference limit
+	// with damping of Belytschko, Liu & Moran (2000), Nonlinear Finite Elements for Continua and
+	// Structures, chapter 6. Returns inf for a mode without stiffness or an immovable mass.
+	Real oscillatorLimit(Real k, Real c, Real m)
+	{
+		if (!(k > 0) || !(m > 0) || !math::isfinite(m)) return std::numeric_limits<Real>::infinity();
+		const Real w0 = math::sqrt(k / m), z = c / (2 * math::sqrt(k * m));
+		return 2 / w0 * (math::sqrt(1 + z * z) - z);
+	}
 	bool heavy(const Body& b) { return !b.isDynamic() || !(b.state->mass > 0); }
+	// Mass of the tangential motion of the contact point: 1/m_t = sum over the dynamic bodies of
+	// 1/m + r^2/I (sliding plus rolling; r the sphere radius, I the smallest principal inertia);
+	// 2/7 m for a solid sphere against a wall.
+	Real tangentialMass(const Body& b1, const Body& b2)
+	{
+		Real inverse = 0;
+		for (const Body* b : { &b1, &b2 }) {
+			if (heavy(*b)) continue;
+			inverse += 1 / b->state->mass;
+			const auto* sphere = dynamic_cast<const Sphere*>(b->shape.get());
+			const Real  inertia = b->state->inertia.minCoeff();
+			if (sphere && inertia > 0) inverse += sphere->radius * sphere->radius / inertia;
+		}
+		return inverse > 0 ? 1 / inverse : std::numeric_limits<Real>::infinity();
+	}
 	// Effective mass of the normal motion: a body that does not move under forces acts as an
 	// infinitely heavy partner (if neither moves, the contact parameters still need a mass).
 	Real effectiveMass(const Body& b1, const Body& b2)
@@ -67,6 +96,11 @@ namespace {
 		if (heavy1 && !heavy2) return mass2;
 		if (heavy2 && !heavy1) return mass1;
 		return (mass1 > 0 && mass2 > 0) ? mass1 * mass2 / (mass1 + mass2) : math::max(mass1, mass2);
+	}
+	Real pairCriticalDt(const PendularPhys& p, const Body& b1, const Body& b2)
+	{
+		if (heavy(b1) && heavy(b2)) return std::numeric_limits<Real>::infinity();
+		return math::min(oscillatorLimit(p.kn, p.cn, effectiveMass(b1, b2)), oscillatorLimit(p.ks, p.cs, tangentialMass(b1, b2)));
 	}
 } // namespace
 
@@ -79,9 +113,19 @@ void PendularCheck::action()
 		for (const auto& functor : loop->physDispatcher->functors) {
 			const auto ip2 = YADE_PTR_DYN_CAST<Ip2_PendularMat_PendularMat_PendularPhys>(functor);
 			if (!ip2) continue;
+			criticalDt                = math::min(criticalDt, ip2->takeCriticalDt());
 			const std::string problem = ip2->takeError(scene);
 			if (message.empty()) message = problem;
 		}
+	}
+	if (scene->dt > dtSafety * criticalDt && scene->dt != warnedDt) {
+		warnedDt = scene->dt;
+		++dtWarnings;
+		LOG_WARN(
+		        "O.dt = " << exact(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
+		                  << exact(criticalDt)
+		                  << " s of the interactions so far: contacts may gain energy or diverge; yade_capillary.scene.stable_dt() gives a "
+		                     "stable time step");
 	}
 	if (!message.empty()) {
 		remember(message);
@@ -224,6 +268,11 @@ void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1
 		report(e.what(), *I);
 		return;
 	}
+	{
+		const Real                        dt = pairCriticalDt(*phys, *body1, *body2);
+		const std::lock_guard<std::mutex> lock(dtMutex);
+		newCriticalDt = math::min(newCriticalDt, dt);
+	}
 	try {
 		setLiquid(phys, m1, m2, body1, body2);
 	} catch (const std::exception& e) {
@@ -256,6 +305,30 @@ std::string Ip2_PendularMat_PendularMat_PendularPhys::takeError(Scene* current)
 	if (errorScene != current || errorIter != current->iter) return ""; // left by a step without PendularCheck
 	current->stopAtIter = stopAtIterBefore;
 	return error;
+}
+
+Real Ip2_PendularMat_PendularMat_PendularPhys::takeCriticalDt()
+{
+	const std::lock_guard<std::mutex> lock(dtMutex);
+	const Real                        dt = newCriticalDt;
+	newCriticalDt                        = std::numeric_limits<Real>::infinity();
+	return dt;
+}
+
+Real Ip2_PendularMat_PendularMat_PendularPhys::criticalDt(Body::id_t id1, Body::id_t id2)
+{
+	const auto& bodies = Omega::instance().getScene()->bodies;
+	if (!bodies->exists(id1) || !bodies->exists(id2) || id1 == id2)
+		throw std::invalid_argument("criticalDt: need two different existing bodies, got ids " + std::to_string(id1) + " and " + std::to_string(id2));
+	const auto& body1 = (*bodies)[id1];
+	const auto& body2 = (*bodies)[id2];
+	const auto* m1    = dynamic_cast<const PendularMat*>(body1->material.get());
+	const auto* m2    = dynamic_cast<const PendularMat*>(body2->material.get());
+	if (!m1 || !m2)
+		throw std::invalid_argument("criticalDt: bodies " + std::to_string(id1) + " and " + std::to_string(id2) + " must both have a PendularMat");
+	auto phys = shared_ptr<PendularPhys>(new PendularPhys());
+	setContact(phys, *m1, *m2, body1, body2);
+	return pairCriticalDt(*phys, *body1, *body2);
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::setContact(

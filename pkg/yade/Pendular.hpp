@@ -110,9 +110,13 @@ REGISTER_SERIALIZABLE(PendularPhys);
 class Ip2_PendularMat_PendularMat_PendularPhys : public IPhysFunctor {
 public:
 	void go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
+	// Two-body critical time step [s] of bodies id1 and id2 of the current scene, whatever their distance.
+	Real criticalDt(Body::id_t id1, Body::id_t id2);
 	// For PendularCheck, in serial code: the first input error met in the current step of `scene`
-	// ("" if none; an error of an earlier step or another scene is dropped).
+	// ("" if none; an error of an earlier step or another scene is dropped), and the smallest
+	// critical time step of the interactions created since the last call (inf if none).
 	std::string takeError(Scene* scene);
+	Real        takeCriticalDt();
 	FUNCTOR2D(PendularMat, PendularMat);
 	DECLARE_LOGGER;
 
@@ -120,39 +124,55 @@ private:
 	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void setLiquid(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void report(const std::string& message, const Interaction& I);
-	// Written from InteractionLoop's OpenMP threads, hence the lock.
-	std::mutex  errorMutex;
+	// Written from InteractionLoop's OpenMP threads, hence the locks.
+	std::mutex  errorMutex, dtMutex;
 	bool        errorPending = false;
 	std::string error;
 	Scene*      errorScene       = nullptr;
 	long        errorIter        = -1;
 	long        stopAtIterBefore = 0;
+	Real        newCriticalDt    = std::numeric_limits<Real>::infinity();
 
 public:
 	// clang-format off
-	YADE_CLASS_BASE_DOC(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
 		"Creates :yref:`PendularPhys` from two :yref:`PendularMat`. Mixing rules: tc, en, et arithmetic means; kn, cn, ks, cs "
 		"in series; friction angle the smaller; Vb and gamma arithmetic means; contact angles kept per body; model, rupture rule, "
 		"forceInContact and linear parameters must be equal (else an error). Effective mass m1 m2/(m1+m2), where a body that is "
 		"not dynamic counts as infinitely heavy (unless neither is dynamic). A body whose shape is not a Sphere (wall, facet) "
 		"is a plane for the bridge. Input errors are raised by :yref:`PendularCheck`: if only the liquid is wrong, the pair "
 		"gets the contact law without a bridge; if the contact parameters are wrong, the interaction is reset and the error "
-		"comes again at every step.");
+		"comes again at every step.",
+		/*attrs*/,
+		/*ctor*/,
+		.def("criticalDt", &Ip2_PendularMat_PendularMat_PendularPhys::criticalDt, (boost::python::arg("id1"), boost::python::arg("id2")),
+		     "Two-body critical time step [s] of bodies id1 and id2 of the current scene (their contact parameters and masses, "
+		     "whatever their distance): the stability limit of YADE's leapfrog for the normal and the tangential spring-dashpot, "
+		     "dt_c = (2/w0)(sqrt(1+z^2) - z), w0^2 = k/m, z = c/(2 sqrt(k m)); tangential mass 1/(1/m + r^2/I) per dynamic sphere. "
+		     "See yade_capillary.scene.stable_dt.")
+	);
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 
 class PendularCheck : public GlobalEngine {
+	Real warnedDt = NaN; // O.dt of the last warning
 public:
 	void action() override;
 	DECLARE_LOGGER;
 	// clang-format off
-	YADE_CLASS_BASE_DOC(PendularCheck, GlobalEngine,
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularCheck, GlobalEngine,
 		"Raises (as a Python ValueError from O.step, O.run(n, True) and O.wait) the first input error that "
 		":yref:`Ip2_PendularMat_PendularMat_PendularPhys` met while creating interactions in this step of this scene, e.g. two "
-		"materials with different models or a bridge outside its model's domain. Place it right after the InteractionLoop "
-		"(yade_capillary.scene.engines does). Without it, an input error stops the simulation at the end of the step and is "
-		"logged.");
+		"materials with different models or a bridge outside its model's domain, and warns (once per value of O.dt) when O.dt "
+		"exceeds dtSafety times the smallest two-body critical time step of the interactions created so far. Place it right "
+		"after the InteractionLoop (yade_capillary.scene.engines does). Without it, an input error stops the simulation at the "
+		"end of the step and is logged.",
+		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
+		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt); inf before the first."))
+		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-].")),
+		/*ctor*/
+	);
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(PendularCheck);
