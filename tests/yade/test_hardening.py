@@ -154,6 +154,9 @@ ck.raises(ValueError, lambda: O.run(5, True), ["model", "richefeu"], "O.run(5, T
 pair(PendularMat(**good), PendularMat(**dict(good, rupture="lian")))
 O.run(5)
 ck.raises(ValueError, O.wait, ["rupture", "lian"], "O.run(5); O.wait() with different rupture rules")
+# Other exceptions keep their Python type: the translator only converts PendularCheck's errors.
+ck.raises(RuntimeError, lambda: O.load("/nonexistent/scene.yade.gz"), ["doesn't exist"], "O.load of a missing file: RuntimeError")
+ck.raises(IndexError, lambda: O.bodies[1000], [], "O.bodies[1000]: IndexError")
 # After a caught error, O.run() continues to the stopAtIter the user set (the error does not move it).
 pair(PendularMat(**good), PendularMat(**dict(good, model="richefeu")))
 O.stopAtIter = 10
