@@ -1,38 +1,136 @@
 #include "Pendular.hpp"
 
+#include <core/InteractionLoop.hpp>
+
+#include <boost/python/exception_translator.hpp>
 #include <sstream>
 #include <stdexcept>
-#include <iostream>
-#include <mutex>
 #include <tuple>
+#include <typeinfo>
 
 namespace yade {
 
 YADE_PLUGIN((PendularMat)(PendularPhys)(Ip2_PendularMat_PendularMat_PendularPhys)(Law2_ScGeom_PendularPhys_Bridge)(PendularCheck));
+CREATE_LOGGER(Ip2_PendularMat_PendularMat_PendularPhys);
+CREATE_LOGGER(PendularCheck);
 
-namespace pendular {
-	namespace {
-		std::mutex  errorMutex;
-		std::string pendingError;
-	}
-	void reportError(const std::string& message)
+namespace {
+	// O.run(n, True) and O.wait() rethrow an exception of the simulation thread as the
+	// std::runtime_error that YADE's ThreadRunner made of it (its type is lost; O.step() keeps it
+	// and Boost.Python turns std::invalid_argument into ValueError). This translator gives the
+	// errors raised by PendularCheck back their ValueError; every other exception goes on to
+	// Boost.Python's default translation.
+	std::mutex  raisedMutex;
+	std::string lastRaised; // message of the last error raised by a PendularCheck
+
+	void remember(const std::string& message)
 	{
-		const std::lock_guard<std::mutex> lock(errorMutex);
-		if (pendingError.empty()) pendingError = message;
+		const std::lock_guard<std::mutex> lock(raisedMutex);
+		lastRaised = message;
 	}
-	std::string takeError()
+	void translateRaised(const std::runtime_error& e)
 	{
-		const std::lock_guard<std::mutex> lock(errorMutex);
-		std::string                       message;
-		std::swap(message, pendingError);
-		return message;
+		bool ours;
+		{
+			const std::lock_guard<std::mutex> lock(raisedMutex);
+			ours = typeid(e) == typeid(std::runtime_error) && !lastRaised.empty() && lastRaised == e.what();
+		}
+		if (!ours) throw;
+		PyErr_SetString(PyExc_ValueError, e.what());
 	}
-} // namespace pendular
+	const bool translatorRegistered = (boost::python::register_exception_translator<std::runtime_error>(&translateRaised), true);
+
+	// Shortest text that reads back as `value`, so that a message shows exactly what was given
+	// (1e-07, not 0.000000 or 9.9999999999999995e-08).
+	std::string exact(Real value)
+	{
+		std::ostringstream out;
+		for (int digits = std::numeric_limits<Real>::digits10;; ++digits) {
+			out.str("");
+			out.precision(digits);
+			out << value;
+			if (!math::isfinite(value) || digits >= std::numeric_limits<Real>::max_digits10) return out.str();
+			std::istringstream in(out.str());
+			Real               back;
+			in >> back;
+			if (back == value) return out.str();
+		}
+	}
+
+	// Stability limit of YADE's leapfrog (NewtonIntegrator: v(t+dt/2) = v(t-dt/2) + dt F(t)/m,
+	// x(t+dt) = x(t) + dt v(t+dt/2)) for m x'' + c x' + k x = 0 with the damping force taken from
+	// v(t-dt/2), as the Law2 does. With h = w0 dt, w0^2 = k/m, d = c dt/m, the step matrix of
+	// (x, v) has trace 2 - h^2 - d and determinant 1 - d; Jury's conditions |1 - d| < 1 and
+	// 1 + trace + det > 0 give h^2 + 2d < 4, i.e. dt < (2/w0)(sqrt(1 + z^2) - z) with
+	// z = c/(2 sqrt(k m)): 2/w0 undamped, smaller with damping. It is the central-difference limit
+	// with damping of Belytschko, Liu & Moran (2000), Nonlinear Finite Elements for Continua and
+	// Structures, chapter 6. Returns inf for a mode without stiffness or an immovable mass.
+	Real oscillatorLimit(Real k, Real c, Real m)
+	{
+		if (!(k > 0) || !(m > 0) || !math::isfinite(m)) return std::numeric_limits<Real>::infinity();
+		const Real w0 = math::sqrt(k / m), z = c / (2 * math::sqrt(k * m));
+		return 2 / w0 * (math::sqrt(1 + z * z) - z);
+	}
+	bool heavy(const Body& b) { return !b.isDynamic() || !(b.state->mass > 0); }
+	// Mass of the tangential motion of the contact point: 1/m_t = sum over the dynamic bodies of
+	// 1/m + r^2/I (sliding plus rolling; r the sphere radius, I the smallest principal inertia);
+	// 2/7 m for a solid sphere against a wall.
+	Real tangentialMass(const Body& b1, const Body& b2)
+	{
+		Real inverse = 0;
+		for (const Body* b : { &b1, &b2 }) {
+			if (heavy(*b)) continue;
+			inverse += 1 / b->state->mass;
+			const auto* sphere = dynamic_cast<const Sphere*>(b->shape.get());
+			const Real  inertia = b->state->inertia.minCoeff();
+			if (sphere && inertia > 0) inverse += sphere->radius * sphere->radius / inertia;
+		}
+		return inverse > 0 ? 1 / inverse : std::numeric_limits<Real>::infinity();
+	}
+	// Effective mass of the normal motion: a body that does not move under forces acts as an
+	// infinitely heavy partner (if neither moves, the contact parameters still need a mass).
+	Real effectiveMass(const Body& b1, const Body& b2)
+	{
+		const Real mass1 = b1.state->mass, mass2 = b2.state->mass;
+		const bool heavy1 = heavy(b1), heavy2 = heavy(b2);
+		if (heavy1 && !heavy2) return mass2;
+		if (heavy2 && !heavy1) return mass1;
+		return (mass1 > 0 && mass2 > 0) ? mass1 * mass2 / (mass1 + mass2) : math::max(mass1, mass2);
+	}
+	Real pairCriticalDt(const PendularPhys& p, const Body& b1, const Body& b2)
+	{
+		if (heavy(b1) && heavy(b2)) return std::numeric_limits<Real>::infinity();
+		return math::min(oscillatorLimit(p.kn, p.cn, effectiveMass(b1, b2)), oscillatorLimit(p.ks, p.cs, tangentialMass(b1, b2)));
+	}
+} // namespace
 
 void PendularCheck::action()
 {
-	const std::string message = pendular::takeError();
-	if (!message.empty()) throw std::invalid_argument(message);
+	std::string message;
+	for (const auto& engine : scene->engines) {
+		const auto loop = YADE_PTR_DYN_CAST<InteractionLoop>(engine);
+		if (!loop) continue;
+		for (const auto& functor : loop->physDispatcher->functors) {
+			const auto ip2 = YADE_PTR_DYN_CAST<Ip2_PendularMat_PendularMat_PendularPhys>(functor);
+			if (!ip2) continue;
+			criticalDt                = math::min(criticalDt, ip2->takeCriticalDt());
+			const std::string problem = ip2->takeError(scene);
+			if (message.empty()) message = problem;
+		}
+	}
+	if (scene->dt > dtSafety * criticalDt && scene->dt != warnedDt) {
+		warnedDt = scene->dt;
+		++dtWarnings;
+		LOG_WARN(
+		        "O.dt = " << exact(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
+		                  << exact(criticalDt)
+		                  << " s of the interactions so far: contacts may gain energy or diverge; yade_capillary.scene.stable_dt() gives a "
+		                     "stable time step");
+	}
+	if (!message.empty()) {
+		remember(message);
+		throw std::invalid_argument(message);
+	}
 }
 
 namespace {
@@ -40,8 +138,7 @@ namespace {
 	[[noreturn]] void badValue(const std::string& cls, const char* name, Real value, const char* range, const char* unit)
 	{
 		std::ostringstream msg;
-		msg.precision(10);
-		msg << cls << "." << name << " = " << value << " " << unit << " is outside the allowed range " << range;
+		msg << cls << "." << name << " = " << exact(value) << " " << unit << " is outside the allowed range " << range;
 		throw std::invalid_argument(msg.str());
 	}
 	bool isSet(Real x) { return !math::isnan(x); }
@@ -156,45 +253,105 @@ void PendularPhys::postLoad(PendularPhys&)
 void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
 {
 	if (I->phys) return;
+	const auto& m1    = static_cast<const PendularMat&>(*b1);
+	const auto& m2    = static_cast<const PendularMat&>(*b2);
+	const auto& body1 = Body::byId(I->getId1(), scene);
+	const auto& body2 = Body::byId(I->getId2(), scene);
+	auto        phys  = shared_ptr<PendularPhys>(new PendularPhys());
+	I->phys           = phys;
+	// No exception may leave InteractionLoop's OpenMP loop: errors are recorded for PendularCheck.
 	try {
-		I->phys = makePhys(b1, b2, I);
+		setContact(phys, m1, m2, body1, body2);
 	} catch (const std::exception& e) {
-		// No exception may leave InteractionLoop's OpenMP loop: record it for PendularCheck, stop
-		// the run after this step, and leave an inert interaction (no bridge, no contact force).
-		const std::string message = std::string(e.what()) + " (interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2()) + ")";
-		pendular::reportError(message);
-		std::cerr << "yade-capillary ERROR: " << message << std::endl;
-		scene->stopAtIter = scene->iter + 1;
-		I->phys           = shared_ptr<PendularPhys>(new PendularPhys());
+		// kn stays 0: the Law2 resets the interaction, so this error comes again at the next step
+		// instead of leaving a pair that passes through without a contact force.
+		report(e.what(), *I);
+		return;
+	}
+	{
+		const Real                        dt = pairCriticalDt(*phys, *body1, *body2);
+		const std::lock_guard<std::mutex> lock(dtMutex);
+		newCriticalDt = math::min(newCriticalDt, dt);
+	}
+	try {
+		setLiquid(phys, m1, m2, body1, body2);
+	} catch (const std::exception& e) {
+		phys->wet = false; // the bridge is refused, the contact law stays
+		report(e.what(), *I);
 	}
 }
 
-shared_ptr<PendularPhys> Ip2_PendularMat_PendularMat_PendularPhys::makePhys(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
+void Ip2_PendularMat_PendularMat_PendularPhys::report(const std::string& what, const Interaction& I)
 {
-	const auto& m1 = static_cast<const PendularMat&>(*b1);
-	const auto& m2 = static_cast<const PendularMat&>(*b2);
-	auto        phys = shared_ptr<PendularPhys>(new PendularPhys());
+	const std::string                 message = what + " (interaction " + std::to_string(I.getId1()) + "-" + std::to_string(I.getId2()) + ")";
+	const std::lock_guard<std::mutex> lock(errorMutex);
+	if (errorPending && errorScene == scene && errorIter == scene->iter) return; // the first error of the step is raised
+	errorPending     = true;
+	error            = message;
+	errorScene       = scene;
+	errorIter        = scene->iter;
+	// Without PendularCheck the run stops after this step; PendularCheck raises instead and puts
+	// stopAtIter back, so that a user who catches the error can go on running.
+	stopAtIterBefore  = scene->stopAtIter;
+	scene->stopAtIter = scene->iter + 1;
+	LOG_ERROR(message);
+}
 
-	const auto& body1 = Body::byId(I->getId1(), scene);
-	const auto& body2 = Body::byId(I->getId2(), scene);
-	// Effective mass: a body that does not move under forces acts as an infinitely heavy partner.
-	Real mass1 = body1->state->mass, mass2 = body2->state->mass;
-	const bool heavy1 = !body1->isDynamic() || mass1 <= 0, heavy2 = !body2->isDynamic() || mass2 <= 0;
-	Real       massR;
-	if (heavy1 && !heavy2) massR = mass2;
-	else if (heavy2 && !heavy1) massR = mass1;
-	else massR = (mass1 > 0 && mass2 > 0) ? mass1 * mass2 / (mass1 + mass2) : math::max(mass1, mass2);
+std::string Ip2_PendularMat_PendularMat_PendularPhys::takeError(Scene* current)
+{
+	const std::lock_guard<std::mutex> lock(errorMutex);
+	if (!errorPending) return "";
+	errorPending = false;
+	if (errorScene != current || errorIter != current->iter) return ""; // left by a step without PendularCheck
+	current->stopAtIter = stopAtIterBefore;
+	return error;
+}
 
+Real Ip2_PendularMat_PendularMat_PendularPhys::takeCriticalDt()
+{
+	const std::lock_guard<std::mutex> lock(dtMutex);
+	const Real                        dt = newCriticalDt;
+	newCriticalDt                        = std::numeric_limits<Real>::infinity();
+	return dt;
+}
+
+Real Ip2_PendularMat_PendularMat_PendularPhys::criticalDt(Body::id_t id1, Body::id_t id2)
+{
+	const auto& bodies = Omega::instance().getScene()->bodies;
+	if (!bodies->exists(id1) || !bodies->exists(id2) || id1 == id2)
+		throw std::invalid_argument("criticalDt: need two different existing bodies, got ids " + std::to_string(id1) + " and " + std::to_string(id2));
+	const auto& body1 = (*bodies)[id1];
+	const auto& body2 = (*bodies)[id2];
+	const auto* m1    = dynamic_cast<const PendularMat*>(body1->material.get());
+	const auto* m2    = dynamic_cast<const PendularMat*>(body2->material.get());
+	if (!m1 || !m2)
+		throw std::invalid_argument("criticalDt: bodies " + std::to_string(id1) + " and " + std::to_string(id2) + " must both have a PendularMat");
+	auto phys = shared_ptr<PendularPhys>(new PendularPhys());
+	setContact(phys, *m1, *m2, body1, body2);
+	return pairCriticalDt(*phys, *body1, *body2);
+}
+
+void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
+        const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const
+{
+	const Real massR = effectiveMass(*body1, *body2);
 	const bool byTime = isSet(m1.tc) && isSet(m1.en) && isSet(m1.et) && isSet(m2.tc) && isSet(m2.en) && isSet(m2.et);
 	const bool byStiff = isSet(m1.kn) && isSet(m1.cn) && isSet(m1.ks) && isSet(m1.cs) && isSet(m2.kn) && isSet(m2.cn) && isSet(m2.ks)
 	        && isSet(m2.cs);
-	if (byTime == byStiff)
+	if (byTime == byStiff) {
+		auto given = [](const PendularMat& m) {
+			return "material " + std::to_string(m.id) + ": tc = " + exact(m.tc) + ", en = " + exact(m.en) + ", et = " + exact(m.et)
+			        + ", kn = " + exact(m.kn) + ", cn = " + exact(m.cn) + ", ks = " + exact(m.ks) + ", cs = " + exact(m.cs);
+		};
 		throw std::invalid_argument(
-		        "PendularMat: give either tc, en, et or kn, cn, ks, cs on both materials (materials " + std::to_string(m1.id) + " and "
-		        + std::to_string(m2.id) + ")");
+		        "PendularMat: give either tc, en, et or kn, cn, ks, cs on both materials (" + given(m1) + "; " + given(m2) + ")");
+	}
 	if (byTime) {
 		const Real tc = (m1.tc + m2.tc) / 2, en = (m1.en + m2.en) / 2, et = (m1.et + m2.et) / 2;
-		if (!(massR > 0)) throw std::invalid_argument("PendularMat with tc, en, et: bodies need a positive mass");
+		if (!(massR > 0))
+			throw std::invalid_argument(
+			        "PendularMat with tc, en, et: bodies need a positive mass (masses " + exact(body1->state->mass) + " and "
+			        + exact(body2->state->mass) + " kg)");
 		const Real omega = Mathr::PI / tc;                                            // half period of the damped oscillation = tc
 		const Real x     = (m1.en == m2.en) ? m1.dampingRatioN : dampingRatioFor(en); // beta / omega
 		phys->kn         = massR * omega * omega * (1 + x * x);
@@ -211,7 +368,11 @@ shared_ptr<PendularPhys> Ip2_PendularMat_PendularMat_PendularPhys::makePhys(cons
 		phys->cs    = series(m1.cs, m2.cs);
 	}
 	phys->tangensOfFrictionAngle = math::tan(math::min(m1.frictionAngle, m2.frictionAngle));
+}
 
+void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
+        const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const
+{
 	phys->wet = m1.wet && m2.wet;
 	if (phys->wet) {
 		auto mustMatch = [&](const char* name, const std::string& a, const std::string& b) {
@@ -222,8 +383,9 @@ shared_ptr<PendularPhys> Ip2_PendularMat_PendularMat_PendularPhys::makePhys(cons
 		mustMatch("model", m1.model, m2.model);
 		mustMatch("rupture", m1.rupture, m2.rupture);
 		mustMatch("forceInContact", m1.forceInContact ? "True" : "False", m2.forceInContact ? "True" : "False");
-		mustMatch("linearFmax", std::to_string(m1.linearFmax), std::to_string(m2.linearFmax));
-		mustMatch("linearKc", std::to_string(m1.linearKc), std::to_string(m2.linearKc));
+		// Compared as values: 1e-7 and 4e-7 N are different, and the message shows both exactly.
+		if (m1.linearFmax != m2.linearFmax) mustMatch("linearFmax", exact(m1.linearFmax), exact(m2.linearFmax));
+		if (m1.linearKc != m2.linearKc) mustMatch("linearKc", exact(m1.linearKc), exact(m2.linearKc));
 		mustMatch("calibrateFrom", m1.calibrateFrom, m2.calibrateFrom);
 		phys->R1             = radiusOf(body1);
 		phys->R2             = radiusOf(body2);
@@ -246,7 +408,6 @@ shared_ptr<PendularPhys> Ip2_PendularMat_PendularMat_PendularPhys::makePhys(cons
 		phys->forceInContact = m1.forceInContact;
 		phys->buildBridge();
 	}
-	return phys;
 }
 
 bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
@@ -258,8 +419,11 @@ bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys
 	if (geom.penetrationDepth < 0) { // separated
 		phys.shearForce = Vector3r::Zero();
 		if (!phys.active) {
+			// No bridge yet (or dry): nothing to keep. Returning false resets the interaction, so the
+			// collider removes it once the bounding boxes part, and the Ig2 makes it real again at
+			// contact, where the bridge forms; a pair that stays close merely gets new physics.
 			phys.normalForce = Vector3r::Zero();
-			return phys.wet; // a wet pair waits for its first contact; a dry one is dropped
+			return false;
 		}
 		const Real gap = -geom.penetrationDepth;
 		if (gap > phys.bridge.rupture) {
@@ -279,6 +443,8 @@ bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys
 		return true;
 	}
 
+	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
+	if (!(phys.kn > 0)) return false;
 	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
 	if (phys.wet && !phys.active) {
 		phys.active = true;

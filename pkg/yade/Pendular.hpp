@@ -7,6 +7,9 @@
 #include <core/GlobalEngine.hpp>
 #include "models.hpp"
 
+#include <limits>
+#include <mutex>
+
 namespace yade {
 
 class PendularMat : public Material {
@@ -107,36 +110,69 @@ REGISTER_SERIALIZABLE(PendularPhys);
 class Ip2_PendularMat_PendularMat_PendularPhys : public IPhysFunctor {
 public:
 	void go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
-	shared_ptr<PendularPhys> makePhys(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I);
+	// Two-body critical time step [s] of bodies id1 and id2 of the current scene, whatever their distance.
+	Real criticalDt(Body::id_t id1, Body::id_t id2);
+	// For PendularCheck, in serial code: the first input error met in the current step of `scene`
+	// ("" if none; an error of an earlier step or another scene is dropped), and the smallest
+	// critical time step of the interactions created since the last call (inf if none).
+	std::string takeError(Scene* scene);
+	Real        takeCriticalDt();
 	FUNCTOR2D(PendularMat, PendularMat);
+	DECLARE_LOGGER;
+
+private:
+	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void setLiquid(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void report(const std::string& message, const Interaction& I);
+	// Written from InteractionLoop's OpenMP threads, hence the locks.
+	std::mutex  errorMutex, dtMutex;
+	bool        errorPending = false;
+	std::string error;
+	Scene*      errorScene       = nullptr;
+	long        errorIter        = -1;
+	long        stopAtIterBefore = 0;
+	Real        newCriticalDt    = std::numeric_limits<Real>::infinity();
+
+public:
 	// clang-format off
-	YADE_CLASS_BASE_DOC(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
 		"Creates :yref:`PendularPhys` from two :yref:`PendularMat`. Mixing rules: tc, en, et arithmetic means; kn, cn, ks, cs "
 		"in series; friction angle the smaller; Vb and gamma arithmetic means; contact angles kept per body; model, rupture rule, "
 		"forceInContact and linear parameters must be equal (else an error). Effective mass m1 m2/(m1+m2), where a body that is "
 		"not dynamic counts as infinitely heavy (unless neither is dynamic). A body whose shape is not a Sphere (wall, facet) "
-		"is a plane for the bridge.");
+		"is a plane for the bridge. Input errors are raised by :yref:`PendularCheck`: if only the liquid is wrong, the pair "
+		"gets the contact law without a bridge; if the contact parameters are wrong, the interaction is reset and the error "
+		"comes again at every step.",
+		/*attrs*/,
+		/*ctor*/,
+		.def("criticalDt", &Ip2_PendularMat_PendularMat_PendularPhys::criticalDt, (boost::python::arg("id1"), boost::python::arg("id2")),
+		     "Two-body critical time step [s] of bodies id1 and id2 of the current scene (their contact parameters and masses, "
+		     "whatever their distance): the stability limit of YADE's leapfrog for the normal and the tangential spring-dashpot, "
+		     "dt_c = (2/w0)(sqrt(1+z^2) - z), w0^2 = k/m, z = c/(2 sqrt(k m)); tangential mass 1/(1/m + r^2/I) per dynamic sphere. "
+		     "See yade_capillary.scene.stable_dt.")
+	);
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 
-// Errors found while interactions are created (inside InteractionLoop's OpenMP region, where an
-// exception would terminate the process) are recorded here; PendularCheck raises them as a
-// Python exception right after the InteractionLoop of the same step.
-namespace pendular {
-	void        reportError(const std::string& message); // keeps the first message until taken
-	std::string takeError();                             // returns "" if there is none
-}
-
 class PendularCheck : public GlobalEngine {
+	Real warnedDt = NaN; // O.dt of the last warning
 public:
 	void action() override;
+	DECLARE_LOGGER;
 	// clang-format off
-	YADE_CLASS_BASE_DOC(PendularCheck, GlobalEngine,
-		"Raises (as a Python ValueError from O.step/O.run) the first input error that :yref:`Ip2_PendularMat_PendularMat_PendularPhys` "
-		"met while creating interactions in this step, e.g. two materials with different models or a bridge outside its model's "
-		"domain. Place it right after the InteractionLoop (yade_capillary.scene.engines does). Without it, such an error stops "
-		"the simulation at the end of the step and is printed, and the interaction gets no bridge and no contact force.");
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularCheck, GlobalEngine,
+		"Raises (as a Python ValueError from O.step, O.run(n, True) and O.wait) the first input error that "
+		":yref:`Ip2_PendularMat_PendularMat_PendularPhys` met while creating interactions in this step of this scene, e.g. two "
+		"materials with different models or a bridge outside its model's domain, and warns (once per value of O.dt) when O.dt "
+		"exceeds dtSafety times the smallest two-body critical time step of the interactions created so far. Place it right "
+		"after the InteractionLoop (yade_capillary.scene.engines does). Without it, an input error stops the simulation at the "
+		"end of the step and is logged.",
+		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
+		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt); inf before the first."))
+		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-].")),
+		/*ctor*/
+	);
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(PendularCheck);
@@ -149,13 +185,15 @@ public:
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
 		"Contact law of yade-capillary. In contact: linear viscoelastic normal force without attraction while unloading, "
 		"incremental tangential spring-dashpot with Coulomb friction (Gladkyy2014 eq. 3-4), plus F(0) if forceInContact. "
-		"Separated with a bridge: the capillary force of the bridge's model along the line of centres. A bridge needs "
-		"the interaction to survive beyond contact: use Bo1_Sphere_Aabb(aabbEnlargeFactor=k) and "
-		"Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=k) with k large enough for the rupture distance.",
-		((OpenMPAccumulator<int>, nBridges, , Attr::noSave | Attr::readonly, "Number of liquid bridges that exist now [-]."))
-		((OpenMPAccumulator<Real>, liquidVolume, , Attr::noSave | Attr::readonly, "Liquid volume in the bridges that exist now [m^3]."))
-		((OpenMPAccumulator<Real>, liquidFormed, , Attr::noSave | Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014)."))
-		((OpenMPAccumulator<Real>, liquidReleased, , Attr::noSave | Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume.")),
+		"Separated with a bridge: the capillary force of the bridge's model along the line of centres; beyond the rupture "
+		"distance the bridge breaks and the interaction is removed. Separated without a bridge (before the first contact, "
+		"with a detection factor > 1): no force, and the interaction is reset (returns false), so that it is removed once "
+		"the bounding boxes part and made again at contact; a real interaction keeps its geometry until the law ends it, so "
+		"no enlarged detection range is needed for the bridge.",
+		((OpenMPAccumulator<int>, nBridges, , Attr::readonly, "Number of liquid bridges that exist now [-]. Saved by O.save."))
+		((OpenMPAccumulator<Real>, liquidVolume, , Attr::readonly, "Liquid volume in the bridges that exist now [m^3]. Saved by O.save."))
+		((OpenMPAccumulator<Real>, liquidFormed, , Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014). Saved by O.save."))
+		((OpenMPAccumulator<Real>, liquidReleased, , Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume. Saved by O.save.")),
 		/*ctor*/,
 		/*py*/);
 	// clang-format on

@@ -1,8 +1,9 @@
-"""Engine lists for the yade-capillary functors (import inside yade only)."""
+"""Engine lists and the stable time step for the yade-capillary functors (import inside yade only)."""
+from yade import O
 from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
                           Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
                           Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
-                          PendularCheck)
+                          PendularCheck, PendularMat)
 
 
 def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop=None):
@@ -13,7 +14,8 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     its totals (nBridges, liquidVolume, ...) can be read as e.g. ``capillaryLaw.nBridges``.
     A bridge forms at contact, so no enlarged detection range is needed: once real, an interaction
     keeps its geometry until the law ends it at rupture. detection_factor > 1 (aabbEnlargeFactor and
-    interactionDetectionFactor) creates interactions before contact, without bridges. loop: an
+    interactionDetectionFactor) creates interactions before contact, without bridges; the law
+    resets them while the pair is apart, so they are removed when the spheres move away. loop: an
     InteractionLoop to use instead of ours (e.g. YADE's built-in capillary law, for comparisons).
     """
     return [
@@ -29,3 +31,46 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
         *extra,
         NewtonIntegrator(gravity=gravity, damping=damping),
     ]
+
+
+def stable_dt(safety=0.1):
+    """Stable time step [s] for the PendularMat bodies of the current scene, as YADE's PWaveTimeStep
+    for its materials: safety times the smallest two-body critical time step over the pairs that
+    can touch (Ip2_PendularMat_PendularMat_PendularPhys.criticalDt: stability limit of YADE's
+    leapfrog for the pair's normal and tangential linear spring-dashpot, dt_c = (2/w0)(sqrt(1+z^2) - z),
+    w0^2 = k/m, z = c/(2 sqrt(k m)); 2/w0 undamped). With tc, en, et, dt_c depends on tc and the
+    restitution coefficients only (0.60 tc at en = et = 0.83); with kn, cn, ks, cs on the masses:
+    the lightest bodies of every pair of materials are taken, a body that is not dynamic (wall,
+    facet, fixed sphere) as an infinitely heavy partner.
+
+    dt_c is necessary, not sufficient: a sphere with z contacts can oscillate up to sqrt(z) times
+    faster than one pair (PendularCheck warns beyond dtSafety = 0.3 of dt_c), and a collision
+    needs enough steps to give the restitution coefficient. safety = 0.1 is about tc/17 at
+    en = 0.83 (our scripts use tc/20) and gives the restitution of a binary collision within
+    1 % (tests/yade/test_timestep.py); at dt = tc/2 a collision at en = 0.83 gains energy (e = 1.18).
+    """
+    if not safety > 0:
+        raise ValueError("stable_dt: safety = %r must be > 0" % safety)
+    ip2 = next((f for e in O.engines if isinstance(e, InteractionLoop) for f in e.physDispatcher.functors
+                if isinstance(f, Ip2_PendularMat_PendularMat_PendularPhys)), None) or Ip2_PendularMat_PendularMat_PendularPhys()
+    light, heavy = {}, {}  # material id -> two lightest dynamic bodies; one body that does not move
+    for b in O.bodies:
+        if b is None or not isinstance(b.material, PendularMat):
+            continue
+        mid = b.material.id
+        if b.dynamic and b.state.mass > 0:
+            light[mid] = sorted(light.get(mid, []) + [(b.state.mass, b.id)])[:2]
+        else:
+            heavy.setdefault(mid, b.id)
+    pairs = set()
+    for a in light:
+        if len(light[a]) == 2:
+            pairs.add((light[a][0][1], light[a][1][1]))
+        for b in light:
+            if a < b:
+                pairs.add((light[a][0][1], light[b][0][1]))
+        for b in heavy:
+            pairs.add((light[a][0][1], heavy[b]))
+    if not pairs:
+        raise ValueError("stable_dt: no two bodies with PendularMat that can touch, one of them dynamic")
+    return safety * min(ip2.criticalDt(i, j) for i, j in pairs)

@@ -64,6 +64,22 @@ ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(wet=Tr
           ["tc, en, et", "kn, cn, ks, cs"], "contact parameters missing on one material")
 ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, Vb=1e-8)), PendularMat(**dict(good, Vb=1e-8))),
           ["willett_full", "fitted range"], "willett_full outside its fitted range (V* = 10)")
+ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, model="linear_irreversible", linearFmax=1e-7, linearKc=1.0)),
+                                         PendularMat(**dict(good, model="linear_irreversible", linearFmax=4e-7, linearKc=1.0))),
+          ["linearFmax", "1e-07", "4e-07"], "linearFmax differing below 1e-6 N")
+
+
+def run_wait(mat_a, mat_b):
+    O.reset()
+    O.dt = 1e-6
+    a, b = O.materials.append(mat_a), O.materials.append(mat_b)
+    O.bodies.append([sphere((0, 0, 0), 1e-3, material=a, fixed=True), sphere((2e-3 - 1e-9, 0, 0), 1e-3, material=b, fixed=True)])
+    O.engines = engines()
+    O.run(3, True)
+
+
+ck.raises(ValueError, lambda: run_wait(PendularMat(**good), PendularMat(**dict(good, model="richefeu"))), ["model", "richefeu"],
+          "O.run(n, True) raises ValueError as O.step() does")
 # The error is reported once; a valid scene runs afterwards.
 first_step(PendularMat(**good), PendularMat(**good))
 ck.true(O.iter == 1, "a valid scene steps normally after an error")

@@ -54,13 +54,13 @@ for code in ("W11", "W24", "W33", "R2"):
                 ck.close(O.interactions[b1, b2].phys.Fcap, expected, 1e-12, "%s %s phys.Fcap" % (code, model), "kernels.force")
                 ck.close(O.forces.f(1)[0], -expected, 1e-12, "%s %s reaction on body 2" % (code, model), "Newton's third law")
 
-# 2. State machine: no bridge before the first contact; bridge at contact; broken beyond sCrit.
+# 2. State machine: no bridge (and no real interaction) before the first contact; bridge at contact; broken beyond sCrit.
 c = cases.case("W11")
 info = kernels.bridge("willett_full", c.R1_m, c.R2_m, c.volume_m3, c.gamma_N_m, c.theta_rad)
 b1, b2 = two_spheres(c, "willett_full", detection_factor=1.2, start_gap=0.5 * info["rupture"])
 O.step()
-ck.true(O.interactions.has(b1, b2) and O.interactions[b1, b2].isReal, "interaction exists before contact (detection factor 1.2)")
-ck.true(not O.interactions[b1, b2].phys.active, "no bridge before the first contact")
+ck.true(not (O.interactions.has(b1, b2) and O.interactions[b1, b2].isReal),
+        "no bridge before the first contact: the law resets the pre-contact interaction (detection factor 1.2)")
 ck.close(O.forces.f(0)[0], 0.0, 0, "no capillary force before contact", "bridges form at contact (Gladkyy 2014, sec. 2)")
 ck.true(capillaryLaw.nBridges == 0, "nBridges = 0 before contact")
 place(c, b2, -1e-9)
@@ -115,11 +115,17 @@ c = cases.case("W22")
 b1, b2 = two_spheres(c, "willett_full")
 O.step()
 F_before = place(c, b2, 0.4 * O.interactions[b1, b2].phys.sCrit)
+totals = (capillaryLaw.nBridges, capillaryLaw.liquidVolume, capillaryLaw.liquidFormed, capillaryLaw.liquidReleased)
 path = os.path.join(tempfile.mkdtemp(), "bridge.yade.gz")
 O.save(path)
 O.load(path)
+ck.true((capillaryLaw.nBridges, capillaryLaw.liquidVolume, capillaryLaw.liquidFormed, capillaryLaw.liquidReleased) == totals,
+        "Law2 totals saved and restored by O.save/O.load")
 O.step()
 ck.true(O.interactions[b1, b2].phys.active, "bridge active after O.load")
 ck.close(O.forces.f(0)[0], F_before, 1e-14, "force after O.load", "force before O.save")
+place(c, b2, 1.01 * O.interactions[b1, b2].phys.sCrit)
+ck.true(capillaryLaw.nBridges == 0 and capillaryLaw.liquidVolume == 0, "rupture after O.load: no bridge, no liquid in bridges")
+ck.close(capillaryLaw.liquidReleased, capillaryLaw.liquidFormed, 1e-15, "liquid released = formed after O.load", "liquid balance")
 
 ck.finish()
