@@ -42,13 +42,21 @@ struct Plausible {
 	static constexpr double vstar_min = 1e-15, vstar_max = 1;      // [-]
 };
 
-// Formats a value with enough digits to tell 1e-7 from 4e-7 (std::to_string would print 0.000000).
+// The shortest text (from 15 significant digits up) that reads back as x, so that a message shows
+// exactly what was given: 1e-07, not 0.000000 (std::to_string) or 9.9999999999999995e-08.
 inline std::string format_value(double x)
 {
-	std::ostringstream s;
-	s.precision(10);
-	s << x;
-	return s.str();
+	std::ostringstream out;
+	for (int digits = std::numeric_limits<double>::digits10;; ++digits) {
+		out.str("");
+		out.precision(digits);
+		out << x;
+		if (!std::isfinite(x) || digits >= std::numeric_limits<double>::max_digits10) return out.str();
+		std::istringstream in(out.str());
+		double             back = 0;
+		in >> back;
+		if (back == x) return out.str();
+	}
 }
 
 // The one wording of out-of-range errors: "<name> = <value> <unit> is outside the allowed range

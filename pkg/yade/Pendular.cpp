@@ -40,22 +40,7 @@ namespace {
 	}
 	const bool translatorRegistered = (boost::python::register_exception_translator<std::runtime_error>(&translateRaised), true);
 
-	// Shortest text that reads back as `value`, so that a message shows exactly what was given
-	// (1e-07, not 0.000000 or 9.9999999999999995e-08).
-	std::string exact(Real value)
-	{
-		std::ostringstream out;
-		for (int digits = std::numeric_limits<Real>::digits10;; ++digits) {
-			out.str("");
-			out.precision(digits);
-			out << value;
-			if (!math::isfinite(value) || digits >= std::numeric_limits<Real>::max_digits10) return out.str();
-			std::istringstream in(out.str());
-			Real               back;
-			in >> back;
-			if (back == value) return out.str();
-		}
-	}
+	std::string exact(Real value) { return capillary::format_value(value); } // one wording with the kernels
 
 	// Stability limit of YADE's leapfrog (NewtonIntegrator: v(t+dt/2) = v(t-dt/2) + dt F(t)/m,
 	// x(t+dt) = x(t) + dt v(t+dt/2)) for m x'' + c x' + k x = 0 with the damping force taken from
@@ -137,9 +122,7 @@ namespace {
 
 	[[noreturn]] void badValue(const std::string& cls, const char* name, Real value, const char* range, const char* unit)
 	{
-		std::ostringstream msg;
-		msg << cls << "." << name << " = " << exact(value) << " " << unit << " is outside the allowed range " << range;
-		throw std::invalid_argument(msg.str());
+		capillary::out_of_range(cls + "." + name, value, range, unit); // the kernels' one wording
 	}
 	bool isSet(Real x) { return !math::isnan(x); }
 
@@ -169,11 +152,12 @@ namespace {
 		s.gamma          = p.gamma;
 		s.theta1         = p.theta1;
 		s.theta2         = p.theta2;
-		s.model          = capillary::model_from_name(p.model);
-		s.rupture        = capillary::rupture_from_name(p.rupture);
+		s.model          = capillary::Model(p.modelIndex);
+		s.rupture        = capillary::Rupture(p.ruptureIndex);
 		s.linear_fmax    = p.linearFmax;
 		s.linear_kc      = p.linearKc;
-		s.calibrate_from = capillary::model_from_name(p.calibrateFrom);
+		s.calibrate_from = capillary::Model(p.calibrateIndex);
+		s.extrapolate    = p.extrapolate;
 		return s;
 	}
 
@@ -186,14 +170,15 @@ namespace {
 
 PendularMat::Checked PendularMat::checked() const
 {
-	return { tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, wet, forceInContact, model, rupture, calibrateFrom };
+	return { tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, wet, forceInContact, extrapolate, model, rupture, calibrateFrom };
 }
 
 void PendularMat::restore(const Checked& c)
 {
 	std::tie(tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc)
 	        = std::tie(c.tc, c.en, c.et, c.kn, c.cn, c.ks, c.cs, c.frictionAngle, c.Vb, c.gamma, c.theta, c.linearFmax, c.linearKc);
-	std::tie(wet, forceInContact, model, rupture, calibrateFrom) = std::tie(c.wet, c.forceInContact, c.model, c.rupture, c.calibrateFrom);
+	std::tie(wet, forceInContact, extrapolate, model, rupture, calibrateFrom)
+	        = std::tie(c.wet, c.forceInContact, c.extrapolate, c.model, c.rupture, c.calibrateFrom);
 }
 
 void PendularMat::postLoad(PendularMat&)
@@ -234,20 +219,37 @@ void PendularMat::validate()
 		throw std::invalid_argument(c + ".calibrateFrom = 'linear_irreversible' is not allowed; allowed: any other model");
 	if (wet && !(Vb > 0)) badValue(c, "Vb", Vb, "(0, inf) when wet=True (set Vb before wet)", "m^3");
 	if (wet && !(gamma > 0)) badValue(c, "gamma", gamma, "(0, inf) when wet=True (set gamma before wet)", "N/m");
+	// The material alone decides the contact angle against the model's domain (and the
+	// calibration model's): refused here rather than at the first interaction.
+	if (wet && !extrapolate) {
+		const bool calibrated = modelId == capillary::Model::linear_irreversible && !(linearFmax > 0 && linearKc > 0);
+		for (const capillary::Model m : { modelId, calibrated ? calibrateId : modelId }) {
+			const capillary::ModelInfo& mi = capillary::info(m);
+			if (!(theta <= mi.domain.theta_max * (1 + 1e-12)))
+				badValue(c, "theta", theta, ("[0, " + exact(mi.domain.theta_max) + "], the domain of model " + mi.name + " (" + mi.domain.source
+				                             + "); set extrapolate=True to extrapolate").c_str(),
+				         "rad");
+		}
+	}
 	if (isSet(en)) dampingRatioN = dampingRatioFor(en);
 }
 
+std::string PendularPhys::modelName() const { return modelIndex < 0 ? "" : capillary::name_of(capillary::Model(modelIndex)); }
+std::string PendularPhys::ruptureName() const { return ruptureIndex < 0 ? "" : capillary::name_of(capillary::Rupture(ruptureIndex)); }
+std::string PendularPhys::calibrateName() const { return calibrateIndex < 0 ? "" : capillary::name_of(capillary::Model(calibrateIndex)); }
+
 void PendularPhys::buildBridge()
 {
-	bridge  = capillary::make_bridge(specOf(*this));
-	R       = bridge.R;
+	const capillary::BridgeSpec spec = specOf(*this);
+	bridge  = capillary::make_bridge(spec);
+	R       = capillary::pair_of(spec).R;
 	sCrit   = bridge.rupture;
 	force0  = bridge.force0;
 }
 
 void PendularPhys::postLoad(PendularPhys&)
 {
-	if (wet && !model.empty()) buildBridge(); // after O.load: the cached invariants are not serialized
+	if (wet && modelIndex >= 0) buildBridge(); // after O.load: the cached invariants are not serialized
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
@@ -387,6 +389,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		if (m1.linearFmax != m2.linearFmax) mustMatch("linearFmax", exact(m1.linearFmax), exact(m2.linearFmax));
 		if (m1.linearKc != m2.linearKc) mustMatch("linearKc", exact(m1.linearKc), exact(m2.linearKc));
 		mustMatch("calibrateFrom", m1.calibrateFrom, m2.calibrateFrom);
+		mustMatch("extrapolate", m1.extrapolate ? "True" : "False", m2.extrapolate ? "True" : "False");
 		phys->R1             = radiusOf(body1);
 		phys->R2             = radiusOf(body2);
 		if (math::isinf(phys->R1)) { // keep the sphere first: the kernels take R2 = inf for a wall
@@ -400,9 +403,10 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		if (math::isinf(phys->R1)) throw std::invalid_argument("PendularMat: a liquid bridge needs at least one sphere");
 		phys->Vb             = (m1.Vb + m2.Vb) / 2;
 		phys->gamma          = (m1.gamma + m2.gamma) / 2;
-		phys->model          = m1.model;
-		phys->rupture        = m1.rupture;
-		phys->calibrateFrom  = m1.calibrateFrom;
+		phys->modelIndex     = int(m1.modelId);
+		phys->ruptureIndex   = int(m1.ruptureId);
+		phys->calibrateIndex = int(m1.calibrateId);
+		phys->extrapolate    = m1.extrapolate;
 		phys->linearFmax     = m1.linearFmax;
 		phys->linearKc       = m1.linearKc;
 		phys->forceInContact = m1.forceInContact;

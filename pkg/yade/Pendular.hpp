@@ -25,7 +25,7 @@ private:
 	// one bad value does not make every later assignment fail.
 	struct Checked {
 		Real        tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc;
-		bool        wet, forceInContact;
+		bool        wet, forceInContact, extrapolate;
 		std::string model, rupture, calibrateFrom;
 	};
 	Checked checked() const;
@@ -55,12 +55,13 @@ public:
 		((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; formulas use the mean (Elskamp2018), the willett_elskamp rupture rule uses both."))
-		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model: weigert, willett_full, willett_reduced, rabinovich, rabinovich_lambert, richefeu, soulie, linear_irreversible, young_laplace_table (exact, tabulated; uses the exact rupture distance). Must be equal on both materials."))
+		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model, one of:" CAPILLARY_MODEL_NAMES_LITERAL " (yade_capillary.kernels.models() lists each with its source and validity domain; young_laplace_table is the exact bridge, tabulated, with the exact rupture distance). A bridge outside its model's domain is refused unless extrapolate=True; a contact angle outside it is refused when the material is wet. Must be equal on both materials."))
 		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32). Must be equal on both materials. linear_irreversible uses its own range fmax/kc."))
 		((bool, forceInContact, false, Attr::triggerPostLoad, "True: the bridge force at contact F(0) also acts during overlap (Richefeu2008, Roy); False: it is off during overlap (Gladkyy2014 eq. 4). Must be equal on both materials."))
 		((Real, linearFmax, 0, Attr::triggerPostLoad, "linear_irreversible: maximum adhesive force [N], (0, inf); 0 (with linearKc = 0) to calibrate from calibrateFrom."))
 		((Real, linearKc, 0, Attr::triggerPostLoad, "linear_irreversible: adhesive stiffness [N/m], (0, inf); 0 (with linearFmax = 0) to calibrate from calibrateFrom."))
-		((std::string, calibrateFrom, "willett_full", Attr::triggerPostLoad, "linear_irreversible: model whose maximum force and adhesive energy the linear law matches, per bridge (Roy section 4.2).")),
+		((std::string, calibrateFrom, "willett_full", Attr::triggerPostLoad, "linear_irreversible: model whose maximum force and adhesive energy the linear law matches, per bridge (Roy section 4.2)."))
+		((bool, extrapolate, false, Attr::triggerPostLoad, "False: a bridge outside its model's validity domain (V*, contact angle, size ratio; yade_capillary.kernels.models()) is an error. True: the model is evaluated at the nearest point of its domain, stretched to the bridge's rupture distance and scaled by R cos(theta) (finite, non-negative, monotone where the model is). Must be equal on both materials.")),
 		createIndex(); lastGood = checked();
 	);
 	// clang-format on
@@ -73,9 +74,13 @@ public:
 	capillary::Bridge bridge {}; // per-bridge invariants, rebuilt from the attributes by postLoad
 	void              postLoad(PendularPhys&);
 	void              buildBridge();
+	std::string       modelName() const;
+	std::string       ruptureName() const;
+	std::string       calibrateName() const;
+	bool              extrapolated() const { return bridge.extrapolated(); }
 	virtual ~PendularPhys() = default;
 	// clang-format off
-	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularPhys, NormShearPhys,
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(PendularPhys, NormShearPhys,
 		"Interaction physics of :yref:`PendularMat`: contact parameters and one liquid bridge. State machine: no bridge -> "
 		"formed at the first contact (``active``) -> broken beyond ``sCrit`` (the interaction is then removed, so a new bridge "
 		"needs a new contact). ``normalForce`` includes the capillary force.",
@@ -91,16 +96,21 @@ public:
 		((Real, gamma, 0, Attr::readonly, "Surface tension [N/m]."))
 		((Real, theta1, 0, Attr::readonly, "Contact angle on body 1 [rad]."))
 		((Real, theta2, 0, Attr::readonly, "Contact angle on body 2 [rad]."))
-		((std::string, model, "", Attr::readonly, "Capillary model of this bridge (resolved once, at creation)."))
-		((std::string, rupture, "", Attr::readonly, "Rupture rule of this bridge."))
-		((std::string, calibrateFrom, "", Attr::readonly, "linear_irreversible: reference model of the calibration."))
+		((int, modelIndex, -1, Attr::readonly, "Index of the capillary model of this bridge in yade_capillary.kernels.MODEL_NAMES (resolved once, at creation; -1: no bridge); its name is ``model``."))
+		((int, ruptureIndex, -1, Attr::readonly, "Index of the rupture rule in yade_capillary.kernels.RUPTURE_NAMES; its name is ``rupture``."))
+		((int, calibrateIndex, -1, Attr::readonly, "linear_irreversible: index of the reference model of the calibration; its name is ``calibrateFrom``."))
+		((bool, extrapolate, false, Attr::readonly, "The bridge may be outside its model's domain (PendularMat.extrapolate)."))
 		((Real, linearFmax, 0, Attr::readonly, "linear_irreversible: maximum force as given [N] (0: calibrated)."))
 		((Real, linearKc, 0, Attr::readonly, "linear_irreversible: stiffness as given [N/m] (0: calibrated)."))
 		((Real, R, 0, Attr::readonly, "Effective radius 2R1R2/(R1+R2) [m]; 2R for a wall (Derjaguin sphere-plane limit)."))
 		((Real, sCrit, 0, Attr::readonly, "Rupture distance: largest surface gap of the bridge [m]."))
 		((Real, force0, 0, Attr::readonly, "Capillary force at contact F(0) [N]."))
 		((Real, Fcap, 0, Attr::readonly, "Capillary force of the last step [N], positive = attraction.")),
-		createIndex();
+		createIndex();,
+		.add_property("model", &PendularPhys::modelName, "Name of the capillary model of this bridge ('' without bridge).")
+		.add_property("rupture", &PendularPhys::ruptureName, "Name of the rupture rule of this bridge.")
+		.add_property("calibrateFrom", &PendularPhys::calibrateName, "linear_irreversible: name of the reference model of the calibration.")
+		.add_property("extrapolated", &PendularPhys::extrapolated, "The bridge lies outside its model's domain and is extrapolated.")
 	);
 	// clang-format on
 	REGISTER_CLASS_INDEX(PendularPhys, NormShearPhys);

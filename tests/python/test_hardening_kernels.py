@@ -22,14 +22,14 @@ def test_outside_the_fit_is_refused_not_infinite():
     # range. Gladkyy2014 section 2.3: Willett's fit holds for theta < 50 deg, V* < 0.1.
     with pytest.raises(ValueError) as e:
         kernels.force("willett_full", np.linspace(0, 1e-6, 50), 1e-3, 1e-3, 1e-19, 0.07, 70 * DEG)
-    assert "V* = V/R^3 = 1e-10" in str(e.value) and "willett_full" in str(e.value)
+    assert "V* = V/R^3 = 9.999999999999999e-11" in str(e.value) and "willett_full" in str(e.value)
     F = kernels.force("willett_full", np.linspace(0, 1e-6, 50), 1e-3, 1e-3, 1e-19, 0.07, 70 * DEG, extrapolate=True)
     assert np.all(np.isfinite(F)) and np.all(F >= 0) and np.all(np.diff(F) <= 1e-12 * F[0])
 
 
 @pytest.mark.parametrize("kwargs,name", [
     (dict(R1=1e-150), "R1 = 1e-150"), (dict(R1=1e150), "R1 = 1e+150"), (dict(R2=1e150), "R2 = 1e+150"),
-    (dict(volume=5e-324), "volume = 4.940656458e-324"), (dict(volume=1e300), "volume = 1e+300"),
+    (dict(volume=5e-324), "volume = 4.94065645841247e-324"), (dict(volume=1e300), "volume = 1e+300"),
     (dict(gamma=1e-300), "gamma = 1e-300"),
 ])
 def test_absurd_input_names_the_parameter(kwargs, name):
@@ -74,7 +74,7 @@ def test_failed_calibration_names_what_failed():
     with pytest.raises(ValueError) as e:
         kernels.bridge("linear_irreversible", 1e-3, 1e-3, 1e-19, 0.07, 70 * DEG)
     assert "linear_kc" not in str(e.value) and "nan" not in str(e.value)
-    assert "theta1 = 1.221730476 rad" in str(e.value) or "V* = V/R^3" in str(e.value)
+    assert "theta1 = 1.22173047639603 rad" in str(e.value) or "V* = V/R^3" in str(e.value)
     # With extrapolation of the reference model the calibration succeeds.
     d = kernels.bridge("linear_irreversible", 1e-3, 1e-3, 1e-19, 0.07, 70 * DEG, extrapolate=True)
     assert math.isfinite(d["linear_kc"]) and d["linear_kc"] > 0 and d["rupture"] > 0

@@ -62,8 +62,8 @@ ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(**dict
           ["rupture"], "different rupture rules")
 ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(wet=True, Vb=1e-11, gamma=0.05)),
           ["tc, en, et", "kn, cn, ks, cs"], "contact parameters missing on one material")
-ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, Vb=1e-8)), PendularMat(**dict(good, Vb=1e-8))),
-          ["willett_full", "fitted range"], "willett_full outside its fitted range (V* = 10)")
+ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, Vb=5e-10)), PendularMat(**dict(good, Vb=5e-10))),
+          ["willett_full", "fitted domain", "V* = V/R^3 = 0.5"], "willett_full outside its fitted domain (V* = 0.5)")
 ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, model="linear_irreversible", linearFmax=1e-7, linearKc=1.0)),
                                          PendularMat(**dict(good, model="linear_irreversible", linearFmax=4e-7, linearKc=1.0))),
           ["linearFmax", "1e-07", "4e-07"], "linearFmax differing below 1e-6 N")
