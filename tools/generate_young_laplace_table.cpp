@@ -10,6 +10,7 @@
 // Runs on all cores; a few minutes on 2.
 #include "young_laplace.hpp"
 #include "young_laplace_table.hpp"
+#include "conventions.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -25,13 +26,12 @@
 using namespace capillary;
 
 namespace {
-constexpr double pi  = 3.14159265358979323846;
 const double     inf = std::numeric_limits<double>::infinity();
 
 std::string row(int i, int j, int k)
 {
 	const double lnv = yltable::lnv_node(i), theta = yltable::theta_node(j), rho = yltable::rho_nodes[k];
-	const double R2 = rho == 0 ? inf : 1 / rho, Rh = rho == 0 ? 2.0 : 2 * R2 / (1 + R2);
+	const double R2 = rho == 0 ? inf : 1 / rho, Rh = rho == 0 ? 2.0 : harmonic_mean_radius(1, R2);
 	const yl::Bridge b(1.0, R2, std::exp(lnv) * Rh * Rh * Rh, theta);
 	std::ostringstream out;
 	out << std::setprecision(17) << lnv << "," << theta << "," << rho << "," << std::log(b.rupture_gap() / Rh);

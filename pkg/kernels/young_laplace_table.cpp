@@ -63,7 +63,9 @@ namespace yltable {
 		const bool   plane = std::isinf(R2);
 		const double rs = plane ? R1 : std::min(R1, R2), rl = plane ? R1 : std::max(R1, R2);
 		const double rho = plane ? 0 : rs / rl;
-		const double Rh  = plane ? 2 * R1 : 2 * R1 * R2 / (R1 + R2);
+		double       r1, r2;
+		equivalent_pair(R1, R2, r1, r2);
+		const double Rh = harmonic_mean_radius(r1, r2);
 		const double lnv = std::log(volume / (Rh * Rh * Rh));
 		if (!(std::abs(theta1 - theta2) <= 1e-12)) outside("theta1 = " + format_value(theta1) + " and theta2 = " + format_value(theta2) + " rad differ; the table holds equal contact angles");
 		if (!(lnv >= lnv_min - 1e-12 && lnv <= lnv_max + 1e-12))

@@ -270,3 +270,43 @@ TEST(BadInput, NamesTheParameter)
 		EXPECT_NE(std::string(e.what()).find("willett_full"), std::string::npos) << "the message lists the allowed names";
 	}
 }
+
+// F(0) = 2 pi R gamma e^f1 needs f4 < 0 (Gladkyy eq. B4): true over the whole declared domain of
+// willett_full, checked on a dense grid up to its corners.
+TEST(Limits, WillettF4NegativeOverTheDomain)
+{
+	const Domain& d = info(Model::willett_full).domain;
+	for (int i = 0; i <= 400; ++i)
+		for (int j = 0; j <= 100; ++j) {
+			const double vs = d.vstar_min * std::pow(d.vstar_max / d.vstar_min, i / 400.0), t = d.theta_max * j / 100;
+			ASSERT_LT(willett_coefficients(vs, t)[3], 0) << "V*=" << vs << " theta=" << t;
+		}
+}
+
+// Input that no bridge can have is refused whatever the model, naming the parameter and keeping
+// its value (before the hardening these gave NaN or inf, or an infinite rupture distance).
+TEST(BadInput, AbsurdValues)
+{
+	const BridgeSpec good = specFor(table1[0], Model::willett_reduced);
+	struct Bad {
+		const char*                      words;
+		std::function<void(BridgeSpec&)> spoil;
+	};
+	const std::vector<Bad> bad = {
+		{ "R1 = 1e-150 m", [](BridgeSpec& s) { s.R1 = 1e-150; } },     { "R1 = 1e+150 m", [](BridgeSpec& s) { s.R1 = 1e150; } },
+		{ "R2 = 1e+150 m", [](BridgeSpec& s) { s.R2 = 1e150; } },      { "R2 = -inf m", [](BridgeSpec& s) { s.R2 = -inf; } },
+		{ "volume = 1e+300 m^3", [](BridgeSpec& s) { s.volume = 1e300; } }, { "volume = 4.94065645841247e-324", [](BridgeSpec& s) { s.volume = 5e-324; } },
+		{ "gamma = 1e-300 N/m", [](BridgeSpec& s) { s.gamma = 1e-300; } },
+		{ "linear_fmax = 1e+300 N and linear_kc = 1e-300", [](BridgeSpec& s) { s.model = Model::linear_irreversible, s.linear_fmax = 1e300, s.linear_kc = 1e-300; } },
+	};
+	for (const auto& b : bad) {
+		BridgeSpec s = good;
+		b.spoil(s);
+		try {
+			make_bridge(s);
+			ADD_FAILURE() << "no error for " << b.words;
+		} catch (const std::invalid_argument& e) {
+			EXPECT_NE(std::string(e.what()).find(b.words), std::string::npos) << e.what();
+		}
+	}
+}
