@@ -3,6 +3,8 @@
 #include <core/InteractionLoop.hpp>
 
 #include <boost/python/exception_translator.hpp>
+#include <boost/python/raw_function.hpp>
+#include <boost/weak_ptr.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -15,30 +17,94 @@ CREATE_LOGGER(Ip2_PendularMat_PendularMat_PendularPhys);
 CREATE_LOGGER(PendularCheck);
 
 namespace {
+	namespace py = boost::python;
+
 	// O.run(n, True) and O.wait() rethrow an exception of the simulation thread as the
 	// std::runtime_error that YADE's ThreadRunner made of it (its type is lost; O.step() keeps it
 	// and Boost.Python turns std::invalid_argument into ValueError). This translator gives the
 	// errors raised by PendularCheck back their ValueError; every other exception goes on to
 	// Boost.Python's default translation.
-	std::mutex  raisedMutex;
-	std::string lastRaised; // message of the last error raised by a PendularCheck
+	//
+	// YADE's pyOmega::wait() (also the end of O.run(n, True)) returns at once, without looking at
+	// ThreadRunner::workerThrew, when the simulation is no longer running at the moment it looks:
+	// if the simulation thread raised and stopped before that moment, the error is silently lost.
+	// This happens in O.run(n, True) when the Python thread loses the CPU between starting the
+	// simulation thread and its first isRunning() check (under load, the erroneous first step is
+	// over by then), and in O.run(); ...; O.wait() whenever the step fails before O.wait(). So an
+	// error raised in the simulation thread is also kept here as undelivered, and Omega.run and
+	// Omega.wait are wrapped (guardOmega) to raise it when YADE's own wait() returned without it.
+	struct Raised {
+		std::string            message;             // of the last error raised by a PendularCheck
+		bool                   undelivered = false; // raised in the simulation thread, not yet given to Python
+		boost::weak_ptr<Scene> scene;               // where and at which step (a step that raises does not
+		long                   iter = -1;           // complete: iter stays), to drop it once stale
+	};
+	std::mutex raisedMutex;
+	Raised     raised;
 
-	void remember(const std::string& message)
+	// `loop`: the scene of a step run by YADE's simulation thread, nullptr for O.step().
+	void remember(const std::string& message, Scene* loop)
 	{
 		const std::lock_guard<std::mutex> lock(raisedMutex);
-		lastRaised = message;
+		raised.message     = message;
+		raised.undelivered = loop != nullptr;
+		raised.scene.reset();
+		if (!loop) return;
+		const auto& current = Omega::instance().getScene();
+		if (current.get() == loop) raised.scene = current;
+		raised.iter = loop->iter;
 	}
 	void translateRaised(const std::runtime_error& e)
 	{
 		bool ours;
 		{
 			const std::lock_guard<std::mutex> lock(raisedMutex);
-			ours = typeid(e) == typeid(std::runtime_error) && !lastRaised.empty() && lastRaised == e.what();
+			ours = typeid(e) == typeid(std::runtime_error) && !raised.message.empty() && raised.message == e.what();
+			if (ours) raised.undelivered = false; // YADE's wait() found it
 		}
 		if (!ours) throw;
 		PyErr_SetString(PyExc_ValueError, e.what());
 	}
 	const bool translatorRegistered = (boost::python::register_exception_translator<std::runtime_error>(&translateRaised), true);
+
+	// After YADE's wait() returned normally: raise the error that stopped the simulation thread if
+	// wait() missed it, as the ValueError O.step() gives. An error of an earlier run, or of a scene
+	// that has been replaced or stepped on since, is dropped (YADE forgets its workerThrew likewise).
+	void deliverMissed()
+	{
+		std::string message;
+		{
+			const std::lock_guard<std::mutex> lock(raisedMutex);
+			if (!raised.undelivered || Omega::instance().isRunning()) return;
+			raised.undelivered  = false;
+			const auto& current = Omega::instance().getScene();
+			if (!current || raised.scene.lock() != current || current->iter != raised.iter) return;
+			message = raised.message;
+		}
+		throw std::invalid_argument(message);
+	}
+	// Omega.run and Omega.wait of yade.wrapper before guardOmega wrapped them (never freed: they
+	// must not be released after the interpreter is finalized).
+	py::object* yadeRun  = nullptr;
+	py::object* yadeWait = nullptr;
+
+	py::object guardedRun(py::tuple args, py::dict kw) // Omega.run(self, nSteps=-1, wait=False)
+	{
+		if (!Omega::instance().isRunning()) {
+			const std::lock_guard<std::mutex> lock(raisedMutex);
+			raised.undelivered = false; // a new run starts: an undelivered error of the last one is stale
+		}
+		py::object       result = (*yadeRun)(*args, **kw);
+		const py::object wait   = py::len(args) > 2 ? py::object(args[2]) : kw.get("wait", false);
+		if (PyObject_IsTrue(wait.ptr()) == 1) deliverMissed();
+		return result;
+	}
+	py::object guardedWait(py::tuple args, py::dict kw)
+	{
+		py::object result = (*yadeWait)(*args, **kw);
+		deliverMissed();
+		return result;
+	}
 
 	std::string exact(Real value) { return capillary::format_value(value); } // one wording with the kernels
 
@@ -113,9 +179,25 @@ void PendularCheck::action()
 		                     "stable time step");
 	}
 	if (!message.empty()) {
-		remember(message);
+		// O.step() runs the step in the Python thread, which holds the GIL and gets the exception
+		// itself; YADE's simulation thread does not hold it, and its wait() may miss the error.
+		remember(message, PyGILState_Check() ? nullptr : scene);
 		throw std::invalid_argument(message);
 	}
+}
+
+void PendularCheck::guardOmega(boost::python::object wrapper)
+{
+	if (yadeRun) return;
+	py::object omega = wrapper.attr("Omega");
+	yadeRun          = new py::object(omega.attr("run"));
+	yadeWait         = new py::object(omega.attr("wait"));
+	py::object run = py::raw_function(guardedRun, 1), wait = py::raw_function(guardedWait, 1);
+	run.attr("__doc__")  = yadeRun->attr("__doc__");
+	wait.attr("__doc__") = yadeWait->attr("__doc__");
+	// Plain attribute assignment (Boost.Python's add_to_namespace would add an overload instead).
+	omega.attr("run")  = run;
+	omega.attr("wait") = wait;
 }
 
 namespace {

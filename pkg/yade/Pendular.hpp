@@ -167,21 +167,29 @@ REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 
 class PendularCheck : public GlobalEngine {
 	Real warnedDt = NaN; // O.dt of the last warning
+	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of this
+	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp). Called when YADE
+	// registers this class in yade.wrapper, after Omega.
+	static void guardOmega(boost::python::object wrapper);
+
 public:
 	void action() override;
 	DECLARE_LOGGER;
 	// clang-format off
-	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularCheck, GlobalEngine,
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(PendularCheck, GlobalEngine,
 		"Raises (as a Python ValueError from O.step, O.run(n, True) and O.wait) the first input error that "
 		":yref:`Ip2_PendularMat_PendularMat_PendularPhys` met while creating interactions in this step of this scene, e.g. two "
 		"materials with different models or a bridge outside its model's domain, and warns (once per value of O.dt) when O.dt "
 		"exceeds dtSafety times the smallest two-body critical time step of the interactions created so far. Place it right "
 		"after the InteractionLoop (yade_capillary.scene.engines does). Without it, an input error stops the simulation at the "
-		"end of the step and is logged.",
+		"end of the step and is logged. The plugin wraps Omega.run and Omega.wait so that they raise the error also when it "
+		"stopped the simulation thread before YADE's wait() looked (which then returns without it).",
 		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
 		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt); inf before the first."))
 		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-].")),
-		/*ctor*/
+		/*ctor*/,
+		/*py: pasted after `(void)_classObj` in pyRegisterClass(_scope), _scope being yade.wrapper*/
+		; guardOmega(_scope)
 	);
 	// clang-format on
 };

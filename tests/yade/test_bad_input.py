@@ -1,6 +1,10 @@
 # Bad input raises a Python ValueError naming the parameter and the allowed range: at assignment
 # for one material's values, on the first step for combinations of two materials.
 import math
+import shutil
+import subprocess
+import sys
+import time
 
 from yade import O
 from yade.utils import sphere
@@ -69,17 +73,88 @@ ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, model="linear_
           ["linearFmax", "1e-07", "4e-07"], "linearFmax differing below 1e-6 N")
 
 
-def run_wait(mat_a, mat_b):
+def two_spheres(mat_a, mat_b):
     O.reset()
     O.dt = 1e-6
     a, b = O.materials.append(mat_a), O.materials.append(mat_b)
     O.bodies.append([sphere((0, 0, 0), 1e-3, material=a, fixed=True), sphere((2e-3 - 1e-9, 0, 0), 1e-3, material=b, fixed=True)])
     O.engines = engines()
+
+
+def run_wait(mat_a, mat_b):
+    two_spheres(mat_a, mat_b)
     O.run(3, True)
 
 
-ck.raises(ValueError, lambda: run_wait(PendularMat(**good), PendularMat(**dict(good, model="richefeu"))), ["model", "richefeu"],
-          "O.run(n, True) raises ValueError as O.step() does")
+def bad_pair():
+    return PendularMat(**good), PendularMat(**dict(good, model="richefeu"))
+
+
+ck.raises(ValueError, lambda: run_wait(*bad_pair()), ["model", "richefeu"], "O.run(n, True) raises ValueError as O.step() does")
+
+
+# YADE's wait() returns without looking at the simulation thread's exception if the simulation has
+# already stopped when it looks. Deterministically: the thread raises and stops before O.wait().
+def until_stopped():
+    deadline = time.time() + 30
+    while O.running and time.time() < deadline:
+        time.sleep(0.01)
+
+
+def run_then_wait(mat_a, mat_b):
+    two_spheres(mat_a, mat_b)
+    O.run(3)
+    until_stopped()
+    O.wait()
+
+
+def returns(fn, what):
+    try:
+        fn()
+        ck.true(True, what)
+    except Exception as e:
+        ck.true(False, "%s: raised %s(%s)" % (what, type(e).__name__, e))
+
+
+ck.raises(ValueError, lambda: run_then_wait(*bad_pair()), ["model", "richefeu"],
+          "O.run(n); O.wait() after the simulation thread stopped on the error raises ValueError")
+returns(O.wait, "a second O.wait() returns (the error is raised once)")
+# In O.run(n, True) the same race depends on the scheduler (the simulation thread's first step is
+# over before the Python thread looks): loop the scenario under CPU load.
+hogs, missed = [], []
+try:
+    python = shutil.which("python3") or sys.executable
+    hogs = [subprocess.Popen([python, "-c", "while True: pass"]) for _ in range(2)]
+    for i in range(50):
+        try:
+            run_wait(*bad_pair())
+            missed.append("%d: no exception" % i)
+        except ValueError as e:
+            if "richefeu" not in str(e):
+                missed.append("%d: %s" % (i, e))
+        except Exception as e:
+            missed.append("%d: %s(%s)" % (i, type(e).__name__, e))
+finally:
+    for hog in hogs:
+        hog.kill()
+        hog.wait()
+ck.true(not missed, "O.run(3, True) raises ValueError 50 times of 50 under CPU load (missed: %s)" % missed[:5])
+# An error that nobody waited for is not raised by a later run (YADE forgets it too), nor for
+# another scene.
+two_spheres(*bad_pair())
+O.run(3)
+until_stopped()
+returns(lambda: O.run(3, True), "a new run after an error nobody waited for does not raise it (bridge refused, contact stays)")
+two_spheres(*bad_pair())
+O.run(3)
+until_stopped()
+first_step(PendularMat(**good), PendularMat(**good))
+returns(O.wait, "O.wait() in another scene does not raise an error of the last one nobody waited for")
+returns(lambda: O.run(3, True), "O.run(3, True) in another scene does not raise it either")
+ck.true(O.iter == 4, "the valid scene ran (iter %d, expected 4)" % O.iter)
+# An error raised by O.step() (in the Python thread) is not raised again by O.wait().
+ck.raises(ValueError, lambda: first_step(*bad_pair()), ["model"], "O.step() raises ValueError")
+returns(O.wait, "O.wait() after O.step() raised does not raise it again")
 # The error is reported once; a valid scene runs afterwards.
 first_step(PendularMat(**good), PendularMat(**good))
 ck.true(O.iter == 1, "a valid scene steps normally after an error")
