@@ -23,7 +23,11 @@ BridgeSpec spec(const std::string& model, double R1, double R2, double volume, d
 	BridgeSpec s;
 	s.model          = model_from_name(model);
 	s.rupture        = rupture_from_name(rupture);
-	s.calibrate_from = model_from_name(calibrate_from);
+	try {
+		s.calibrate_from = model_from_name(calibrate_from);
+	} catch (const std::invalid_argument&) {
+		throw std::invalid_argument("calibrate_from = '" + calibrate_from + "' is unknown; allowed: " + model_names());
+	}
 	s.R1             = R1;
 	s.R2             = R2;
 	s.volume         = volume;
@@ -94,6 +98,7 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 		for (const auto& r : models()) {
 			py::dict d;
 			d["name"] = r.name, d["reference"] = r.reference, d["monotone"] = r.monotone, d["own_rupture"] = r.own_rupture;
+			d["needs_linear"] = r.needs_linear;
 			d["domain"] = domain_dict(r.domain);
 			l.append(d);
 		}
@@ -110,7 +115,7 @@ PYBIND11_MODULE(_yade_capillary_kernels, m)
 
 	m.def(
 	        "force",
-	        [](const std::string& model, py::array_t<double> gap, double R1, double R2, double volume, double gamma, double theta,
+	        [](const std::string& model, py::array_t<double, py::array::c_style | py::array::forcecast> gap, double R1, double R2, double volume, double gamma, double theta,
 	           std::optional<double> theta2, const std::string& rupture, double linear_fmax, double linear_kc,
 	           const std::string& calibrate_from, bool extrapolate) -> py::object {
 		        const Bridge b = make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from, extrapolate));

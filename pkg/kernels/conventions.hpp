@@ -40,6 +40,8 @@ struct Plausible {
 	static constexpr double radius_min = 1e-9, radius_max = 1e3;   // [m]
 	static constexpr double gamma_min = 1e-7, gamma_max = 10;      // [N/m]
 	static constexpr double vstar_min = 1e-15, vstar_max = 1;      // [-]
+	static constexpr double force_max = 1e6;                       // [N], 2 pi R gamma of a 1 km grain at 10 N/m: 6e4 N
+	static constexpr double range_max = 10;                        // bridge range / effective radius [-]
 };
 
 // The shortest text (from 15 significant digits up) that reads back as x, so that a message shows

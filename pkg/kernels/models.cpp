@@ -40,15 +40,15 @@ namespace {
 		                            + " rad differ; equal contact angles are required by " + hint);
 	}
 
-	// The nearest in-domain pair: V*, angles and size ratio clamped (the smaller sphere kept).
+	// The nearest in-domain pair: V*, angles and size ratio clamped (the larger sphere shrunk to
+	// ratio_max times the smaller, each keeping its angle). A wall has ratio 1 (its equivalent pair).
 	Pair clamped(const Domain& d, const Pair& p)
 	{
 		Pair c = p;
-		if (p.wall && !d.wall) c.wall = false, c.R2 = c.r2 = d.ratio_max * p.R1, c.r1 = p.R1;
 		if (c.ratio > d.ratio_max) {
-			const double rs = std::min(c.r1, c.r2);
-			c.r1 = rs, c.r2 = d.ratio_max * rs;
-			if (!c.wall) c.R1 = c.r1, c.R2 = c.r2;
+			double& large = c.r1 > c.r2 ? c.r1 : c.r2;
+			large         = d.ratio_max * std::min(c.r1, c.r2);
+			c.R1 = c.r1, c.R2 = c.r2;
 		}
 		c.ratio  = std::max(c.r1, c.r2) / std::min(c.r1, c.r2);
 		c.R      = harmonic_mean_radius(c.r1, c.r2);
@@ -71,6 +71,10 @@ namespace {
 	// Builds variant alternative I (a model type M) or its extrapolated form.
 	template <class M, std::size_t I> Bridge build(const BridgeSpec& s, const Pair& p, const char* name)
 	{
+		if (!M::needs_linear) {
+			if (s.linear_fmax != 0) out_of_range("linear_fmax", s.linear_fmax, "{0} (not used by model " + std::string(name) + ")", "N");
+			if (s.linear_kc != 0) out_of_range("linear_kc", s.linear_kc, "{0} (not used by model " + std::string(name) + ")", "N/m");
+		}
 		Bridge b;
 		if (in_domain(M::domain, p)) {
 			b.rupture = rupture_distance(s.rupture, p);
@@ -79,12 +83,13 @@ namespace {
 			b.m.template emplace<I>(std::move(m));
 			return b;
 		}
-		if (!s.extrapolate) refuse(name, M::domain, p);
+		if (!s.extrapolate || (p.wall && !M::domain.wall)) refuse(name, M::domain, p); // no nearest point for a wall
 		const Pair c         = clamped(M::domain, p);
 		double     rupture_c = rupture_distance(s.rupture, c);
 		M          m         = M::make(spec_of(s, c), c, rupture_c);
-		// A model with its own range: stretched like every rupture rule at leading order, V^(1/3).
-		b.rupture              = M::own_rupture ? rupture_c * std::cbrt(p.volume / c.volume) : rupture_distance(s.rupture, p);
+		// A model with its own range: stretched as the rupture rule stretches from c to p.
+		b.rupture              = M::own_rupture ? rupture_c * rupture_distance(s.rupture, p) / rupture_distance(s.rupture, c)
+		                                        : rupture_distance(s.rupture, p);
 		Extrapolated<M> e      = { std::move(m), rupture_c / b.rupture, p.R * std::cos(p.theta) / (c.R * std::cos(c.theta)) };
 		b.force0               = e.force0();
 		b.m.template emplace<I + Models::n>(std::move(e));
@@ -112,7 +117,7 @@ namespace {
 		{ Rupture::willett, "willett", "Gladkyy2014 eq. (2)" },
 		{ Rupture::willett_elskamp, "willett_elskamp", "Elskamp2018 eq. (32)" },
 	};
-#define CAPILLARY_INFO_(name, Type) { Model::name, #name, Type::reference, Type::monotone, Type::own_rupture, Type::domain },
+#define CAPILLARY_INFO_(name, Type) { Model::name, #name, Type::reference, Type::monotone, Type::own_rupture, Type::needs_linear, Type::domain },
 	const std::vector<ModelInfo> model_table = { CAPILLARY_MODELS(CAPILLARY_INFO_) };
 #undef CAPILLARY_INFO_
 
@@ -130,16 +135,15 @@ namespace {
 Weigert Weigert::make(const BridgeSpec&, const Pair& p, double& rupture)
 {
 	Weigert w;
-	w.R = p.R, w.volume = p.volume, w.gamma = p.gamma, w.theta = p.theta;
-	w.k = 0.12 * 8 * p.R * p.R * p.R * (1 + 1.1 * std::sin(p.theta)); // (A1) with (A4)
+	w.R = p.R, w.gamma = p.gamma, w.theta = p.theta;
+	w.vk = p.volume / (0.12 * 8 * p.R * p.R * p.R * (1 + 1.1 * std::sin(p.theta))); // (A1) with (A4)
 	// The toroidal approximation needs beta + theta < pi/2 and a positive neck radius r2; both
 	// are tightest at the largest beta (a = 0) and the largest gap (a = rupture).
-	const double sinb0 = std::pow(p.volume / w.k, 0.25);
+	const double sinb0 = std::pow(w.vk, 0.25);
 	if (!(sinb0 < 1) || std::asin(sinb0) + p.theta >= pi / 2)
 		outside_model("weigert", "half-filling angle + contact angle >= pi/2 (V* = " + format_value(p.vstar) + ")");
-	w.force0_ = w.force(0);
-	const double Frup = w.force(rupture);
-	if (!(std::isfinite(w.force0_) && std::isfinite(Frup) && Frup >= 0))
+	const double F0 = w.force(0), Frup = w.force(rupture);
+	if (!(std::isfinite(F0) && std::isfinite(Frup) && Frup >= 0))
 		outside_model("weigert", "negative neck radius before rupture (V* = " + format_value(p.vstar) + ")");
 	return w;
 }
@@ -147,7 +151,7 @@ Weigert Weigert::make(const BridgeSpec&, const Pair& p, double& rupture)
 double Weigert::force(double a) const
 {
 	const double Ca   = 1 + 6 * a / (2 * R);                  // (A3)
-	const double sinb = std::pow(volume / (k * Ca), 0.25);     // (A2)
+	const double sinb = std::pow(vk / Ca, 0.25);               // (A2)
 	const double beta = std::asin(sinb);
 	const double half = std::sin(beta / 2);
 	// (A6) with the half gap a/2: the toroidal geometry of a symmetric bridge, and the form used
@@ -210,7 +214,7 @@ Soulie Soulie::make(const BridgeSpec&, const Pair& p, double&)
 	return m;
 }
 
-LinearIrreversible LinearIrreversible::make(const BridgeSpec& s, const Pair&, double& rupture)
+LinearIrreversible LinearIrreversible::make(const BridgeSpec& s, const Pair& p, double& rupture)
 {
 	double fmax = s.linear_fmax, kc = s.linear_kc;
 	if (!(fmax > 0 && kc > 0)) {
@@ -218,24 +222,33 @@ LinearIrreversible LinearIrreversible::make(const BridgeSpec& s, const Pair&, do
 			if (!(fmax > 0)) out_of_range("linear_fmax", fmax, "(0, inf), or 0 with linear_kc = 0 to calibrate", "N");
 			out_of_range("linear_kc", kc, "(0, inf), or 0 with linear_fmax = 0 to calibrate", "N/m");
 		}
-		if (s.calibrate_from == Model::linear_irreversible)
-			throw std::invalid_argument("calibrate_from = linear_irreversible is not allowed; allowed: any other model (" + model_names() + ")");
+		if (s.calibrate_from == Model::linear_irreversible) {
+			std::string others;
+			for (const auto& row : models())
+				if (row.model != Model::linear_irreversible) others += (others.empty() ? "" : ", ") + std::string(row.name);
+			throw std::invalid_argument("calibrate_from = linear_irreversible is not allowed; allowed: " + others);
+		}
 		// Roy et al. section 4.2: equal maximum force and equal adhesive energy E = fmax^2 / (2 kc),
 		// hence kc = fmax^2 / (2 E) and rupture fmax / kc = 2 E / fmax.
-		BridgeSpec ref  = s;
-		ref.model       = s.calibrate_from;
-		const Bridge rb = make_bridge(ref);
-		fmax            = rb.force0;
+		BridgeSpec ref = s;
+		ref.model      = s.calibrate_from;
+		Bridge rb;
+		try {
+			rb = make_bridge(ref);
+		} catch (const std::invalid_argument& e) {
+			throw std::invalid_argument(std::string("calibrate_from = ") + name_of(s.calibrate_from) + ": " + e.what());
+		}
+		fmax = rb.force0;
 		for (int i = 1; i <= 256; ++i) fmax = std::max(fmax, bridge_force(rb, rb.rupture * i / 256.0));
 		kc = fmax * fmax / (2 * adhesive_energy(rb));
-		if (!(fmax > 0 && std::isfinite(kc) && kc > 0))
-			throw std::invalid_argument(std::string("calibrate_from = ") + name_of(s.calibrate_from) + ": the calibration gave fmax = "
-			                            + format_value(fmax) + " N, kc = " + format_value(kc) + " N/m; give linear_fmax and linear_kc");
 	}
+	const std::string given = "linear_fmax = " + format_value(fmax) + " N and linear_kc = " + format_value(kc) + " N/m";
+	if (!(fmax <= Plausible::force_max)) out_of_range("linear_fmax", fmax, "(0, " + format_value(Plausible::force_max) + "]", "N");
 	rupture = fmax / kc; // Roy eq. (17): the model defines its own interaction range
-	if (!(std::isfinite(fmax) && std::isfinite(rupture)))
-		throw std::invalid_argument("linear_fmax = " + format_value(fmax) + " N and linear_kc = " + format_value(kc)
-		                            + " N/m give the range fmax/kc = " + format_value(rupture) + " m; allowed: finite values");
+	if (!(rupture > 0 && rupture <= Plausible::range_max * p.R))
+		throw std::invalid_argument(given + " give the range fmax/kc = " + format_value(rupture) + " m, outside the allowed range (0, "
+		                            + format_value(Plausible::range_max * p.R) + "] m (" + format_value(Plausible::range_max)
+		                            + " effective radii)");
 	return { fmax, kc };
 }
 
@@ -246,7 +259,7 @@ YoungLaplaceTable YoungLaplaceTable::make(const BridgeSpec&, const Pair& p, doub
 	auto                 k = std::make_shared<Coefficients>();
 	yltable::coefficients(c, k->data());
 	rupture = c.rupture;
-	return { std::move(k), c.force[yltable::n_w - 1] };
+	return { std::move(k) };
 }
 
 // ---- validation, rupture rules, the bridge ----------------------------------------------------
@@ -336,6 +349,7 @@ double adhesive_energy(const Bridge& b)
 {
 	const double hi = b.rupture, f0 = bridge_force(b, 0), fm = bridge_force(b, hi / 2), f1 = bridge_force(b, hi);
 	const double whole = hi / 6 * (f0 + 4 * fm + f1);
+	if (!std::isfinite(whole)) throw std::invalid_argument("adhesive energy: F(0) = " + format_value(f0) + " N over " + format_value(hi) + " m is not finite");
 	// Relative tolerance: an absolute one would underflow for tiny forces and never be met.
 	Simpson s { b, 1 << 20 };
 	return s.integrate(0, hi, f0, fm, f1, whole, 1e-12 * std::abs(whole));
@@ -345,7 +359,11 @@ double adhesive_energy(const Bridge& b)
 
 const std::vector<ModelInfo>&   models() { return model_table; }
 const std::vector<RuptureInfo>& rupture_rules() { return rupture_table; }
-const ModelInfo&                info(Model m) { return model_table.at(std::size_t(m)); }
+const ModelInfo& info(Model m)
+{
+	if (std::size_t(m) >= model_table.size()) throw std::invalid_argument("model: unknown enumerator " + std::to_string(int(m)));
+	return model_table[std::size_t(m)];
+}
 std::string                     model_names() { return join_names(model_table); }
 std::string                     rupture_names() { return join_names(rupture_table); }
 

@@ -8,6 +8,7 @@
 //                that range;
 //   monotone     whether its force never grows with the gap;
 //   own_rupture  whether it defines its own interaction range instead of the rupture rule;
+//   needs_linear whether it uses linear_fmax, linear_kc and calibrate_from (others refuse them);
 // and provides
 //   make(spec, pair, rupture)  its named per-bridge invariants, computed once (it may replace the
 //                              rupture distance of the rule by its own);
@@ -27,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -128,19 +130,18 @@ constexpr double theta_50deg = 50 * pi / 180;
 struct Weigert { // Gladkyy2014 eq. (5), (A2)-(A7); Weigert & Ripperger 1999
 	static constexpr const char* reference = "Gladkyy2014 eq. (5), (A2)-(A7), half gap in (A6)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Willett's range, Gladkyy2014 section 2.3 (none printed for Weigert)" };
-	static constexpr bool   monotone = true, own_rupture = false;
-	double R, volume, gamma, theta;
-	double k;      // 0.12 (2R)^3 C_theta [m^3], (A1) with (A4)
-	double force0_; // [N]
+	static constexpr bool   monotone = true, own_rupture = false, needs_linear = false;
+	double R, gamma, theta;
+	double vk; // V / (0.12 (2R)^3 C_theta) [-], (A2) at a = 0, with (A1), (A4)
 	static Weigert make(const BridgeSpec&, const Pair&, double& rupture);
-	double         force0() const { return force0_; }
+	double         force0() const { return force(0); }
 	double         force(double a) const;
 };
 
 struct WillettFull { // Gladkyy2014 eq. (6), (7), (B1)-(B4); Willett et al. 2000
 	static constexpr const char* reference = "Gladkyy2014 eq. (6), (7), (B1)-(B4)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Gladkyy2014 section 2.3 (Willett2000): theta < 50 deg, V* < 0.1" };
-	static constexpr bool   monotone = true, own_rupture = false;
+	static constexpr bool   monotone = true, own_rupture = false, needs_linear = false;
 	double f1, f2, f3, f4; // (B1)-(B4)
 	double inv_s;          // 1 / (2 sqrt(V/R)) [1/m], S+ = a inv_s (6)
 	double scale;          // 2 pi R gamma [N]
@@ -157,7 +158,7 @@ struct WillettFull { // Gladkyy2014 eq. (6), (7), (B1)-(B4); Willett et al. 2000
 struct WillettReduced { // Gladkyy2014 eq. (6), (8); Willett et al. 2000 eq. (12)
 	static constexpr const char* reference = "Gladkyy2014 eq. (6), (8)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Gladkyy2014 section 2.3 (Willett2000): theta < 50 deg, V* < 0.1" };
-	static constexpr bool   monotone = true, own_rupture = false;
+	static constexpr bool   monotone = true, own_rupture = false, needs_linear = false;
 	double inv_s; // 1 / (2 sqrt(V/R)) [1/m]
 	double scale; // 2 pi R gamma cos(theta) [N]
 	static WillettReduced make(const BridgeSpec&, const Pair&, double& rupture);
@@ -174,7 +175,7 @@ struct WillettReduced { // Gladkyy2014 eq. (6), (8); Willett et al. 2000 eq. (12
 struct RabinovichLambert { // Gladkyy2014 eq. (9), (10), (12); Lambert et al. 2008
 	static constexpr const char* reference = "Gladkyy2014 eq. (9), (10), (12)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Willett's range, Gladkyy2014 section 2.3 (none printed for Rabinovich)" };
-	static constexpr bool   monotone = true, own_rupture = false;
+	static constexpr bool   monotone = true, own_rupture = false, needs_linear = false;
 	double c;     // 2V / (pi R) [m^2]
 	double scale; // 2 pi R gamma cos(theta) [N]
 	static RabinovichLambert make(const BridgeSpec&, const Pair&, double& rupture);
@@ -185,7 +186,7 @@ struct RabinovichLambert { // Gladkyy2014 eq. (9), (10), (12); Lambert et al. 20
 struct Rabinovich { // Gladkyy2014 eq. (9)-(11), with the sine term; Rabinovich et al. 2005
 	static constexpr const char* reference = "Gladkyy2014 eq. (9)-(11)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, inf_ratio, true, false, "Willett's range, Gladkyy2014 section 2.3 (none printed for Rabinovich)" };
-	static constexpr bool   monotone = false, own_rupture = false;
+	static constexpr bool   monotone = false, own_rupture = false, needs_linear = false;
 	RabinovichLambert lambert;
 	double            R, theta;
 	double            scale; // 2 pi R gamma [N]
@@ -202,7 +203,7 @@ struct Rabinovich { // Gladkyy2014 eq. (9)-(11), with the sine term; Rabinovich 
 struct Richefeu { // Richefeu2008 eq. (4), (5), (7), (10), (11)
 	static constexpr const char* reference = "Richefeu2008 eq. (4), (5), (10), (11)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, 4, true, false, "Willett's range, Gladkyy2014 section 2.3; ratio <= 4 checked here (none printed in Richefeu2008)" };
-	static constexpr bool   monotone = true, own_rupture = false;
+	static constexpr bool   monotone = true, own_rupture = false, needs_linear = false;
 	double scale;      // kappa sqrt(R1 R2) [N], eq. (4), (5)
 	double inv_lambda; // 1 / lambda [1/m], eq. (11)
 	static Richefeu make(const BridgeSpec&, const Pair&, double& rupture);
@@ -213,7 +214,7 @@ struct Richefeu { // Richefeu2008 eq. (4), (5), (7), (10), (11)
 struct Soulie { // Soulie et al. 2006, coefficients as printed there (see models.cpp)
 	static constexpr const char* reference = "Soulie2006 (coefficients as printed there)";
 	static constexpr Domain domain    = { 1e-5, 0.1, theta_50deg, 4, true, false, "Willett's range, Gladkyy2014 section 2.3; ratio <= 4 checked here (none printed)" };
-	static constexpr bool   monotone = true, own_rupture = false;
+	static constexpr bool   monotone = true, own_rupture = false, needs_linear = false;
 	double A;     // -1.1 V*^-0.53 / R_large [1/m]
 	double B, C;  // [-]
 	double scale; // pi gamma sqrt(R1 R2) [N]
@@ -227,7 +228,7 @@ struct LinearIrreversible { // Roy et al. eq. (16), (17), calibration of their s
 	// The linear law has no range of its own; calibrated, it inherits its reference model's.
 	static constexpr Domain domain    = { 0, Plausible::vstar_max, pi / 2, inf_ratio, true, false,
                                            "none (calibrated: the reference model's)" };
-	static constexpr bool   monotone = true, own_rupture = true;
+	static constexpr bool   monotone = true, own_rupture = true, needs_linear = true;
 	double fmax; // [N]
 	double kc;   // [N/m]
 	static LinearIrreversible make(const BridgeSpec&, const Pair&, double& rupture);
@@ -239,12 +240,11 @@ struct YoungLaplaceTable { // exact Young-Laplace bridge, tabulated (young_lapla
 	static constexpr const char* reference = "Young-Laplace solver, tabulated (data/young_laplace_table.csv)";
 	static constexpr Domain domain    = { 1e-5, 0.1, yltable::theta_max, 4, true, true, "the table's nodes (data/young_laplace_table.csv)" };
 	// Not monotone: at large contact angles the exact force first grows slightly with the gap.
-	static constexpr bool monotone = false, own_rupture = true;
+	static constexpr bool monotone = false, own_rupture = true, needs_linear = false;
 	using Coefficients            = std::array<double, yltable::n_coefficients>;
 	std::shared_ptr<const Coefficients> k; // the bridge's Hermite segments of 1/F (shared by copies)
-	double                              force0_;
 	static YoungLaplaceTable make(const BridgeSpec&, const Pair&, double& rupture);
-	double                   force0() const { return force0_; }
+	double                   force0() const { return 1 / (*k)[1]; } // the first segment at x = 0: 1/F(0)
 	double                   force(double a) const { return yltable::force(k->data(), a); }
 };
 
@@ -276,7 +276,11 @@ struct Bridge {
 	Models::Variant m;
 	double          rupture = 0; // [m] gap at which the bridge breaks
 	double          force0  = 0; // [N] force at contact, F(a <= 0)
-	Model           model() const { return Model((m.index() - 1) % Models::n); }
+	Model           model() const // throws std::logic_error for a default Bridge (no model)
+	{
+		if (m.index() == 0) throw std::logic_error("capillary::Bridge: no model (default-constructed bridge)");
+		return Model((m.index() - 1) % Models::n);
+	}
 	bool            extrapolated() const { return m.index() > Models::n; }
 };
 
@@ -311,6 +315,7 @@ struct ModelInfo {
 	const char* reference;
 	bool        monotone; // force non-increasing in the gap over the whole bridge
 	bool        own_rupture;
+	bool        needs_linear;
 	Domain      domain;
 };
 struct RuptureInfo {

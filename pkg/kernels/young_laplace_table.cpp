@@ -60,7 +60,7 @@ namespace yltable {
 	{
 		static const bool nodes_ok = checked_nodes();
 		(void)nodes_ok;
-		const bool   plane = std::isinf(R2);
+		const bool   plane = is_wall(R2);
 		const double rs = plane ? R1 : std::min(R1, R2), rl = plane ? R1 : std::max(R1, R2);
 		const double rho = plane ? 0 : rs / rl;
 		double       r1, r2;

@@ -297,7 +297,10 @@ TEST(BadInput, AbsurdValues)
 		{ "R2 = 1e+150 m", [](BridgeSpec& s) { s.R2 = 1e150; } },      { "R2 = -inf m", [](BridgeSpec& s) { s.R2 = -inf; } },
 		{ "volume = 1e+300 m^3", [](BridgeSpec& s) { s.volume = 1e300; } }, { "volume = 4.94065645841247e-324", [](BridgeSpec& s) { s.volume = 5e-324; } },
 		{ "gamma = 1e-300 N/m", [](BridgeSpec& s) { s.gamma = 1e-300; } },
-		{ "linear_fmax = 1e+300 N and linear_kc = 1e-300", [](BridgeSpec& s) { s.model = Model::linear_irreversible, s.linear_fmax = 1e300, s.linear_kc = 1e-300; } },
+		{ "linear_fmax = 1e+300 N", [](BridgeSpec& s) { s.model = Model::linear_irreversible, s.linear_fmax = 1e300, s.linear_kc = 1; } },
+		{ "linear_fmax = 0.001 N and linear_kc = 1e-300 N/m give the range", [](BridgeSpec& s) { s.model = Model::linear_irreversible, s.linear_fmax = 1e-3, s.linear_kc = 1e-300; } },
+		{ "linear_kc = inf N/m", [](BridgeSpec& s) { s.model = Model::linear_irreversible, s.linear_fmax = 1e-3, s.linear_kc = inf; } },
+		{ "linear_fmax = -5 N is outside the allowed range {0} (not used by model willett_reduced)", [](BridgeSpec& s) { s.linear_fmax = -5; } },
 	};
 	for (const auto& b : bad) {
 		BridgeSpec s = good;

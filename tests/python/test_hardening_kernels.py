@@ -85,3 +85,26 @@ def test_messages_keep_the_value():
     with pytest.raises(ValueError) as e:
         kernels.bridge("young_laplace_table", 1e-3, 1e-3, 1e-16, 0.07)
     assert "1e-07" in str(e.value)
+
+
+def test_strided_and_fortran_gap_arrays():
+    # Before: a strided view (a[::2]) or a Fortran-ordered array was read as if contiguous, so the
+    # forces belonged to other gaps, silently.
+    args = ("willett_reduced",)
+    kw = dict(R1=1e-3, R2=1e-3, volume=1e-11, gamma=0.07, theta=0.1)
+    base = np.array([0.0, 9.0, 1e-5, 9.0, 2e-5, 9.0])
+    expected = np.array([kernels.force(*args, float(g), **kw) for g in base[::2]])
+    assert np.array_equal(kernels.force(*args, base[::2], **kw), expected)
+    grid = np.asfortranarray(np.array([[0.0, 1e-5, 2e-5], [3e-5, 4e-5, 5e-5]]))
+    F = kernels.force(*args, grid, **kw)
+    assert F.shape == grid.shape
+    assert all(F[i, j] == kernels.force(*args, float(grid[i, j]), **kw) for i in range(2) for j in range(3))
+
+
+def test_unused_and_unknown_parameters_are_named():
+    with pytest.raises(ValueError, match="calibrate_from = 'foo' is unknown"):
+        kernels.bridge("linear_irreversible", 1e-3, 1e-3, 1e-11, 0.07, calibrate_from="foo")
+    with pytest.raises(ValueError, match=r"linear_fmax = -5 N is outside the allowed range \{0\} \(not used by model willett_full\)"):
+        kernels.bridge("willett_full", 1e-3, 1e-3, 1e-11, 0.07, linear_fmax=-5)
+    with pytest.raises(ValueError, match="calibrate_from = young_laplace_table: theta1 = 0.1 rad and theta2 = 0.3 rad differ"):
+        kernels.bridge("linear_irreversible", 1e-3, 1e-3, 1e-11, 0.07, 0.1, 0.3, calibrate_from="young_laplace_table")
