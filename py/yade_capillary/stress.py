@@ -183,3 +183,15 @@ def state_vector():
     for name in ("nBridges", "liquidVolume", "liquidFormed", "liquidReleased"):
         s[name] = (float(getattr(law, name)),)
     return s
+
+
+def repo_root():
+    """The source tree (the package's files in build/python are links to py/yade_capillary)."""
+    import os
+    return os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+
+
+def build_dir():
+    """$BUILD_DIR (set by ctest) or <repo>/build."""
+    import os
+    return os.environ.get("BUILD_DIR") or os.path.join(repo_root(), "build")
