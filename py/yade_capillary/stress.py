@@ -63,18 +63,21 @@ def contact_dt_limit(tc, en):
 
 
 def stable_dt(tc, en, fraction=0.9, parallel_contacts=1):
-    """`fraction` of the stability limit: yade_capillary.scene.stable_dt() where it exists (call it after
-    the bodies are created), else contact_dt_limit(tc, en) / sqrt(parallel_contacts). parallel_contacts:
+    """`fraction` of the stability limit (yade_capillary.scene.stable_dt() where it exists: call this after
+    the bodies are created; else contact_dt_limit(tc, en)), divided by sqrt(parallel_contacts):
     how many contacts may act in parallel on one sphere in the same direction, e.g. 2 in a facet box,
     where a sphere on the diagonal of a face touches both of its triangles (twice the stiffness: the
     limit falls by sqrt(2); at 0.9 of the single-contact limit spheres gain energy there and leave
     the box)."""
+    limit = None
     if hasattr(_scene, "stable_dt"):
         try:
-            return fraction * _scene.stable_dt()
+            limit = _scene.stable_dt()
         except TypeError:
-            pass
-    return fraction * contact_dt_limit(tc, en) / math.sqrt(parallel_contacts)
+            limit = None
+    if limit is None:
+        limit = contact_dt_limit(tc, en)
+    return fraction * limit / math.sqrt(parallel_contacts)
 
 
 def box_packing(n, model, rmin=0.5e-3, ratio=10.0, box="walls", vstar=0.02, seed=1, speed=0.0, gravity=(0, 0, -9.81),

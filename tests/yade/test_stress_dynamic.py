@@ -17,7 +17,7 @@ import sys
 
 from yade import O
 
-from yade_capillary import stress
+from yade_capillary import scene, stress
 from yade_capillary.testing import Checker
 
 NIGHTLY = "nightly" in sys.argv[1:] or os.environ.get("STRESS_SIZE") == "nightly"
@@ -51,8 +51,9 @@ def run_scene(kind, model, box, ratio, kw, n, steps, speed, gravity):
     _, L = stress.box_packing(n, model, ratio=ratio, box=box, speed=speed, gravity=gravity, seed=7, tc=TC, en=EN, **kw)
     # 0.9 of the limit; in a facet box a sphere on a face diagonal touches two facets (limit / sqrt 2)
     O.dt = stress.stable_dt(TC, EN, parallel_contacts=2 if box == "facets" else 1)
-    ck.true(O.dt > 0.6 * stress.contact_dt_limit(TC, EN), "%s: dt = %.3g s is near the stability limit %.3g s"
-            % (name, O.dt, stress.contact_dt_limit(TC, EN)))
+    if not hasattr(scene, "stable_dt"):  # our own limit: make sure the scene runs near it
+        ck.true(O.dt > 0.6 * stress.contact_dt_limit(TC, EN), "%s: dt = %.3g s is near the stability limit %.3g s"
+                % (name, O.dt, stress.contact_dt_limit(TC, EN)))
     formed_any = False
     for k in range(steps // CHECK_EVERY):
         try:
