@@ -256,12 +256,14 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
     """Fuzz about n_evaluations force evaluations (GAPS_PER_BRIDGE per bridge). timeout [s]: a bridge that
     takes more CPU time than this is a hang (a valid bridge takes under 1 ms, calibration included).
     Returns a dict: counts (every category), examples (up to 3 per category), hung (index and spec of
-    every bridge that hung or crashed), extrapolate (whether the keyword was exercised), seconds, seed."""
+    every bridge that hung or crashed), by_model (model -> failure counts), extrapolate (whether the
+    keyword was exercised), seconds, seed."""
     t0 = time.time()
     n = max(1, int(round(n_evaluations / GAPS_PER_BRIDGE)))
     with_extrapolate = accepts_extrapolate()
     total = _Counts()
     hung = []  # (index, spec) of every hang and crash
+    by_model = {}  # model -> failure counts
     ctx = mp.get_context("fork")
     i = 0
     while i < n:
@@ -275,6 +277,7 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
                 total.c["bridges"] += 1
                 total.c["evaluations"] += GAPS_PER_BRIDGE
                 hung.append((i, spec))
+                by_model.setdefault(spec["model"], dict.fromkeys(FAILURES, 0))["hang" if proc.is_alive() else "crash"] += 1
                 if proc.is_alive():
                     total.fail("hang", spec, "bridge %d: no answer within %g s" % (i, timeout))
                 else:
@@ -287,10 +290,15 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
                 total.c["bridges"] += 1
                 total.c["evaluations"] += GAPS_PER_BRIDGE
                 total.fail("crash", spec, "bridge %d: worker died" % i)
+                hung.append((i, spec))
+                by_model.setdefault(spec["model"], dict.fromkeys(FAILURES, 0))["crash"] += 1
                 break
             assert j == i
+            model = bridge_spec(seed, i, with_extrapolate)["model"]
             for k, v in c.items():
                 total.c[k] += v
+                if k in FAILURES and v:
+                    by_model.setdefault(model, dict.fromkeys(FAILURES, 0))[k] += v
             for k, v in ex.items():
                 room = 3 - len(total.examples.setdefault(k, []))
                 total.examples[k] += v[:max(room, 0)]
@@ -303,7 +311,7 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
         parent.close()
         i += 1 if i < n else 0  # skip the bridge that hung or crashed
     return dict(counts=total.c, examples=total.examples, extrapolate=with_extrapolate, seconds=time.time() - t0, seed=seed,
-                hung=hung)
+                hung=hung, by_model=by_model)
 
 
 def failures(report):
@@ -318,6 +326,8 @@ def format_report(report):
                                                           c["rejected"], "exercised" if report["extrapolate"] else
                                                           "not available", report["seconds"])]
     lines.append("  " + ", ".join("%s %d" % (k, c[k]) for k in FAILURES))
+    for model, fc in sorted(report.get("by_model", {}).items()):
+        lines.append("  %-20s %s" % (model, ", ".join("%s %d" % (k, v) for k, v in fc.items() if v)))
     for k in FAILURES:
         for e in report["examples"].get(k, []):
             lines.append("  e.g. %s: %s" % (k, e))
