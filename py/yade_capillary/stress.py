@@ -64,11 +64,11 @@ def contact_dt_limit(tc, en):
 
 def stable_dt(tc, en, fraction=0.9, parallel_contacts=1):
     """`fraction` of the stability limit (yade_capillary.scene.stable_dt() where it exists: call this after
-    the bodies are created; else contact_dt_limit(tc, en)), divided by sqrt(parallel_contacts):
-    how many contacts may act in parallel on one sphere in the same direction, e.g. 2 in a facet box,
-    where a sphere on the diagonal of a face touches both of its triangles (twice the stiffness: the
-    limit falls by sqrt(2); at 0.9 of the single-contact limit spheres gain energy there and leave
-    the box)."""
+    the bodies are created; else contact_dt_limit(tc, en)), divided by sqrt(parallel_contacts): how
+    many contacts may act in parallel on one sphere along one direction (2: a sphere pinched between
+    a neighbour and a wall or between two neighbours, the highest mode of a chain, omega = sqrt(2)
+    omega0; 3: the two facets of a face diagonal of a facet box and a neighbour). At 0.9 of the
+    binary limit, dense scenes gain energy and spheres leave the box."""
     limit = None
     if hasattr(_scene, "stable_dt"):
         try:
