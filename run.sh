@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # yade-capillary entry point. Sets up (installs, fetches headers, builds) when needed, then:
 #   ./run.sh validate   two-sphere validation (Gladkyy 2014, Table 1): summary table + results/two_sphere/
-#   ./run.sh test       all tests (kernel unit tests, Python tests, in-YADE tests)
+#   ./run.sh test       all tests (kernel unit tests, Python tests, in-YADE tests); further arguments
+#                       go to ctest, e.g. ./run.sh test -L fast (all but the slow shear-cell regression)
 #   ./run.sh bench      speed benchmark against YADE's built-in capillary law
 #   ./run.sh setup      only set up and build
 set -euo pipefail
@@ -16,7 +17,7 @@ BUILD_DIR=$BUILD_DIR "$ROOT/tools/setup.sh"
 cd "$ROOT"
 case "$cmd" in
   validate) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/two_sphere.py results/two_sphere ;;
-  test) ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" ;;
+  test) shift; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" "$@" ;;
   bench) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/benchmark_packing.py ;;
   setup) ;;
 esac

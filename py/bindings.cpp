@@ -89,7 +89,7 @@ Raises ValueError naming the parameter, its value and its allowed range.)";
 
 } // namespace
 
-PYBIND11_MODULE(_yade_capillary_kernels, m)
+PYBIND11_MODULE(_kernels, m)
 {
 	m.doc() = "Pure capillary bridge models of yade-capillary (SI units, radians).";
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Build an overlay YADE prefix (symlinks to every file of the system yade-double folder plus our
-# plugin) and the launcher build/yade-capillary, which runs the system yade with that prefix.
+# plugin) and the launcher build/yade-capillary, which runs the system yade with that prefix and
+# build/python (the package yade_capillary as the build assembles it) on PYTHONPATH.
 set -euo pipefail
 build=$1; src=$2; libdir=$3; yade=$4
 overlay="$build/prefix/lib/x86_64-linux-gnu/yade-double"
@@ -11,7 +12,7 @@ cat > "$build/yade-capillary" <<SH
 #!/bin/sh
 # Debian's YADE with the yade-capillary plugin loaded; takes the same arguments as yade.
 export YADE_PREFIX="$build/prefix"
-export PYTHONPATH="$src/py:$build/python\${PYTHONPATH:+:\$PYTHONPATH}"
+export PYTHONPATH="$build/python\${PYTHONPATH:+:\$PYTHONPATH}"
 exec "$yade" "\$@"
 SH
 chmod +x "$build/yade-capillary"

@@ -10,4 +10,9 @@ Modules:
     benchmark -- side-by-side speed of our Law2 and YADE's built-in capillary law (inside yade)
     cg       -- axisymmetric coarse-graining (density, angular velocity, stress) for rotating flows
     fits     -- erf shear-band fit and tau = mu p + c fit with standard errors
+    fuzz     -- randomised stress test of the kernels (every model, wide and absurd inputs)
+    stress   -- wet scenes, time-step limit and invariant checks for the in-YADE stress tests (inside yade only)
+
+The compiled module is yade_capillary._kernels (re-exported by kernels); the build assembles the
+package in build/python, so PYTHONPATH=build/python gives all of it in plain python3.
 """

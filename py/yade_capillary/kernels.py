@@ -1,6 +1,7 @@
 """The pure capillary bridge models of yade-capillary (SI units, radians).
 
-Works in plain ``python3`` and inside ``yade``. Example::
+Works in plain ``python3`` (``PYTHONPATH=build/python``: the build assembles the package there, with the
+compiled module ``yade_capillary._kernels``) and inside ``yade``. Example::
 
     import numpy as np
     from yade_capillary import kernels
@@ -20,8 +21,8 @@ sphere-wall bridge. Bad input raises ValueError naming the parameter and its all
 ``YoungLaplaceBridge(R1, R2, volume, theta1)`` is the exact solver: ``.rupture_gap`` and
 ``.solve(gap, gamma)`` (force by the neck and contact-line methods, filling angles, pressure).
 """
-from _yade_capillary_kernels import (YoungLaplaceBridge, bridge, force, models, rupture_distance, rupture_rules, table_axes,
-                                     willett_coefficients)
+from ._kernels import (YoungLaplaceBridge, bridge, force, models, rupture_distance, rupture_rules, table_axes,  # compiled module
+                       willett_coefficients)
 
 __all__ = ["YoungLaplaceBridge", "bridge", "force", "models", "rupture_distance", "rupture_rules", "table_axes",
            "willett_coefficients", "MODEL_NAMES", "RUPTURE_NAMES"]
