@@ -1,6 +1,6 @@
 """Writes the reference data of every capillary model: tests/data/models/<model>.csv.
 
-Plain python3 (PYTHONPATH=py:build/python /usr/bin/python3 scripts/model_reference.py [outdir]). Each file
+Plain python3 (PYTHONPATH=build/python /usr/bin/python3 scripts/model_reference.py [outdir]). Each file
 holds the force of the model at 7 gaps (0 to 0.99 of the rupture distance) on Gladkyy's Table 1
 cases, a sphere-wall bridge and a bridge with unequal contact angles, as computed by the kernels
 when the file was written: a regression record, read by one generic test
@@ -47,7 +47,7 @@ def write(model, path, made_by):
 def main(outdir):
     os.makedirs(outdir, exist_ok=True)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip() or "unknown"
-    made_by = "PYTHONPATH=py:build/python /usr/bin/python3 scripts/model_reference.py %s (at commit %s)" % (outdir, commit)
+    made_by = "PYTHONPATH=build/python /usr/bin/python3 scripts/model_reference.py %s (at commit %s)" % (outdir, commit)
     for model in kernels.MODEL_NAMES:
         write(model, os.path.join(outdir, model + ".csv"), made_by)
         print("wrote", os.path.join(outdir, model + ".csv"))
