@@ -211,7 +211,7 @@ def check_bridge(spec, monotone, counts):
 
 
 def _worker(conn, seed, start, stop, with_extrapolate):
-    monotone = {m[0]: bool(m[2]) for m in kernels.models()}
+    monotone = {m["name"]: bool(m["monotone"]) for m in kernels.models()}
     for i in range(start, stop):
         spec = bridge_spec(seed, i, with_extrapolate)
         counts = _Counts()
