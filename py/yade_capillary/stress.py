@@ -148,11 +148,14 @@ def invariants(law=None, box=None):
         liquidVolume=law.liquidVolume, liquidFormed=law.liquidFormed, liquidReleased=law.liquidReleased)
 
 
-def check(ck, where, law=None, box=None):
-    """Record the invariants as checks of the Checker ck; returns the invariants."""
+def check(ck, where, law=None, box=None, escapes_fail=True):
+    """Record the invariants as checks of the Checker ck; returns the invariants. box: side of the box
+    of box_packing, to check that no sphere left it (escapes_fail=False: only print how many did)."""
     v = invariants(law, box)
-    if box:
+    if box and escapes_fail:
         ck.true(v["outside"] == 0, "%s: %d spheres left the box (max speed %.3g m/s)" % (where, v["outside"], v["max_speed"]))
+    elif box and v["outside"]:
+        print("%s: %d spheres left the box (max speed %.3g m/s; not counted as a failure)" % (where, v["outside"], v["max_speed"]))
     ck.true(v["bad_pos"] == 0, "%s: finite positions (%d of %d spheres not)" % (where, v["bad_pos"], v["n_spheres"]))
     ck.true(v["bad_vel"] == 0, "%s: finite velocities (%d not)" % (where, v["bad_vel"]))
     ck.true(v["bad_force"] == 0, "%s: finite forces and torques (%d bodies not)" % (where, v["bad_force"]))
