@@ -1,4 +1,4 @@
-// Python module of the pure capillary kernels (_yade_capillary_kernels), re-exported as
+// Python module of the pure capillary kernels (yade_capillary._kernels), re-exported as
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
 #include "young_laplace.hpp"

@@ -4,8 +4,7 @@ Used by tests/yade/test_stress_dynamic.py, test_threads.py and test_save_continu
 
 * ``material(model, ...)``: a wet PendularMat (linear spring-dashpot from tc, en, et);
 * ``contact_dt_limit(tc, en)`` and ``stable_dt(tc, en)``: the stability limit of the central-difference
-  (leapfrog) integration of one contact of that law (``yade_capillary.scene.stable_dt()`` is used when
-  the package has it);
+  (leapfrog) integration of one contact of that law (``yade_capillary.scene.stable_dt(safety=1)``);
 * ``box_packing(...)``: polydisperse spheres in a closed box of walls (``utils.wall``) or facets
   (``geom.facetBox``), with the engines of ``yade_capillary.scene.engines``;
 * ``invariants(law)`` / ``check(ck, law, where)``: finite positions, velocities and forces, bridge count,
@@ -63,20 +62,14 @@ def contact_dt_limit(tc, en):
 
 
 def stable_dt(tc, en, fraction=0.9, parallel_contacts=1):
-    """`fraction` of the stability limit (yade_capillary.scene.stable_dt() where it exists: call this after
-    the bodies are created; else contact_dt_limit(tc, en)), divided by sqrt(parallel_contacts): how
+    """`fraction` of the two-body stability limit (yade_capillary.scene.stable_dt(safety=1): call this
+    after the bodies are created; it equals contact_dt_limit(tc, en) for these materials, a check of
+    test_stress_dynamic), divided by sqrt(parallel_contacts): how
     many contacts may act in parallel on one sphere along one direction (2: a sphere pinched between
     a neighbour and a wall or between two neighbours, the highest mode of a chain, omega = sqrt(2)
     omega0; 3: the two facets of a face diagonal of a facet box and a neighbour). At 0.9 of the
     binary limit, dense scenes gain energy and spheres leave the box."""
-    limit = None
-    if hasattr(_scene, "stable_dt"):
-        try:
-            limit = _scene.stable_dt()
-        except TypeError:
-            limit = None
-    if limit is None:
-        limit = contact_dt_limit(tc, en)
+    limit = _scene.stable_dt(safety=1.0)  # the two-body limit itself; the fraction is applied here
     return fraction * limit / math.sqrt(parallel_contacts)
 
 
