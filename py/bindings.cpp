@@ -1,6 +1,7 @@
 // Python module of the pure capillary kernels (yade_capillary._kernels), re-exported as
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
+#include "viscous.hpp"
 #include "young_laplace.hpp"
 #include "young_laplace_table.hpp"
 
@@ -8,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -197,4 +199,60 @@ PYBIND11_MODULE(_kernels, m)
 
 	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
 	      "Willett's f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3 [-] and theta [rad].");
+
+	// ---- viscous bridge forces (Elskamp2018 eq. 25-29, 33); not used by the YADE layer yet ----
+	m.def("viscous_laws", [] {
+		py::list l;
+		for (const auto& r : normal_viscous_laws()) l.append(py::make_tuple(r.name, r.reference));
+		return l;
+	}, "Normal viscous laws as (name, reference) tuples; the first (pitois) is the default.");
+
+	m.def(
+	        "viscous_normal_force",
+	        [](const std::string& law, double S, double v_n, double R1, double R2, double eta, double volume, double S_min_factor) {
+		        return normal_viscous_force(normal_viscous_from_name(law), S, v_n, R1, R2, eta, volume, S_min_factor);
+	        },
+	        py::arg("law"), py::arg("S"), py::arg("v_n"), py::arg("R1"), py::arg("R2"), py::arg("eta"), py::arg("volume") = 0.0,
+	        py::arg("S_min_factor") = default_s_min_factor,
+	        ("Normal viscous force [N] on particle 1 along n (n: unit vector from particle 1 to 2): f = -c v_n, so it "
+	         "opposes the relative normal motion (f v_n <= 0; particle 2 gets -f).\n"
+	         "    law: " + normal_viscous_names() + " (pitois: Elskamp2018 eq. 26, the default law; adams_perchard: eq. 25)\n"
+	         "    S: surface separation [m]; evaluated at max(S, 0) + S_min, S_min = S_min_factor r* (added, Elskamp2018 "
+	         "after eq. 29; an overlap S < 0 gets the force at contact)\n"
+	         "    v_n: (v1 - v2) . n [m/s], > 0 approaching\n"
+	         "    R1, R2: radii [m] (R2 = inf: wall); r* = R1 R2/(R1 + R2), the reduced radius (R1 for a wall)\n"
+	         "    eta: dynamic viscosity [Pa s] >= 0 (0: exactly 0)\n"
+	         "    volume: bridge volume [m^3], required by pitois, ignored by adams_perchard\n"
+	         "    S_min_factor: S_min / r* [-], default 0.001\n"
+	         "Raises ValueError naming the parameter, its value and its allowed range.").c_str());
+
+	m.def(
+	        "viscous_tangential",
+	        [](double S, std::array<double, 3> n, std::array<double, 3> v_rel, double R1, double R2, double eta, std::array<double, 3> omega1,
+	           std::array<double, 3> omega2, double S_min_factor) {
+		        const TangentialViscous t = tangential_viscous(S, n, v_rel, omega1, omega2, R1, R2, eta, S_min_factor);
+		        py::dict                d;
+		        d["c_t"] = t.c_t, d["c_r"] = t.c_r, d["near"] = t.near;
+		        d["force"] = t.force, d["moment1"] = t.moment1, d["moment2"] = t.moment2;
+		        return d;
+	        },
+	        py::arg("S"), py::arg("n"), py::arg("v_rel"), py::arg("R1"), py::arg("R2"), py::arg("eta"),
+	        py::arg("omega1") = std::array<double, 3> { 0, 0, 0 }, py::arg("omega2") = std::array<double, 3> { 0, 0, 0 },
+	        py::arg("S_min_factor") = default_s_min_factor,
+	        "Tangential viscous force and moments (Goldman et al.; Elskamp2018 eq. 28 for S_eff < 0.1 r*, eq. 29 beyond): "
+	        "F1 = -c_t v_t - c_r (omega_r x n), v_t the tangential part of v_rel, omega_r = R1 omega1 + R2 omega2 [m/s]. "
+	        "Returns a dict: c_t, c_r [N s/m], near (True: eq. 28), force [N] on particle 1 (particle 2: -force), "
+	        "moment1 = R1 n x force and moment2 = R2 n x force [N m] (moment2 = 0 for a wall).\n"
+	        "    S: surface separation [m] (floored as in viscous_normal_force)\n"
+	        "    n: unit vector from particle 1 to particle 2; v_rel = v1 - v2 [m/s]; omega1, omega2 [rad/s] "
+	        "(a wall: its velocity at the contact point in v_rel, omega2 = 0)\n"
+	        "    R1, R2 [m] (R2 = inf: wall), eta [Pa s] >= 0, S_min_factor [-]\n"
+	        "c_t is floored at 0 beyond S_eff = 6.03 r* (the printed form turns negative there); c_r jumps by 3.3 % at "
+	        "S_eff = 0.1 r* (the paper's branches, kept). Raises ValueError naming the parameter and its allowed range.");
+
+	m.def("dynamic_rupture_distance", &dynamic_rupture_distance, py::arg("static"), py::arg("v_rel"), py::arg("eta"), py::arg("gamma"),
+	      "Dynamic rupture distance [m] (Pitois et al., Elskamp2018 eq. 33): static * (1 + sqrt(|v_rel| eta / gamma)). "
+	      "static: static rupture distance [m] > 0 (e.g. rupture_distance(...)); v_rel: relative speed |v1 - v2| [m/s] "
+	      "(sign ignored); eta: viscosity [Pa s] >= 0 (0: the static distance); gamma: surface tension [N/m]. Raises "
+	      "ValueError naming the parameter and its allowed range.");
 }

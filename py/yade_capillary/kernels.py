@@ -20,12 +20,19 @@ sphere-wall bridge. Bad input raises ValueError naming the parameter and its all
 
 ``YoungLaplaceBridge(R1, R2, volume, theta1)`` is the exact solver: ``.rupture_gap`` and
 ``.solve(gap, gamma)`` (force by the neck and contact-line methods, filling angles, pressure).
-"""
-from ._kernels import (YoungLaplaceBridge, bridge, force, models, rupture_distance, rupture_rules, table_axes,  # compiled module
-                       willett_coefficients)
 
-__all__ = ["YoungLaplaceBridge", "bridge", "force", "models", "rupture_distance", "rupture_rules", "table_axes",
-           "willett_coefficients", "MODEL_NAMES", "RUPTURE_NAMES"]
+Viscous bridge forces (Elskamp 2018 eq. 25-29, 33; not used by the YADE layer yet):
+``viscous_normal_force(law, S, v_n, R1, R2, eta, volume)`` (laws ``VISCOUS_NAMES``),
+``viscous_tangential(S, n, v_rel, R1, R2, eta, omega1, omega2)`` and
+``dynamic_rupture_distance(static, v_rel, eta, gamma)``.
+"""
+from ._kernels import (YoungLaplaceBridge, bridge, dynamic_rupture_distance, force, models, rupture_distance,  # compiled module
+                       rupture_rules, table_axes, viscous_laws, viscous_normal_force, viscous_tangential, willett_coefficients)
+
+__all__ = ["YoungLaplaceBridge", "bridge", "dynamic_rupture_distance", "force", "models", "rupture_distance", "rupture_rules",
+           "table_axes", "viscous_laws", "viscous_normal_force", "viscous_tangential", "willett_coefficients", "MODEL_NAMES",
+           "RUPTURE_NAMES", "VISCOUS_NAMES"]
 
 MODEL_NAMES = [m["name"] for m in models()]
 RUPTURE_NAMES = [r[0] for r in rupture_rules()]
+VISCOUS_NAMES = [r[0] for r in viscous_laws()]
