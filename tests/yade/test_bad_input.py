@@ -68,6 +68,9 @@ ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(wet=Tr
           ["tc, en, et", "kn, cn, ks, cs"], "contact parameters missing on one material")
 ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, Vb=5e-10)), PendularMat(**dict(good, Vb=5e-10))),
           ["willett_full", "fitted domain", "V* = V/R^3 = 0.5"], "willett_full outside its fitted domain (V* = 0.5)")
+# Before the hardening Vb = 1e300 m^3 was accepted and the bridge never broke (infinite rupture distance).
+ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, Vb=1e300)), PendularMat(**dict(good, Vb=1e300))),
+          ["volume = 1e+300 m^3", "allowed range"], "an absurd bridge volume (1e300 m^3) is refused, naming the volume")
 ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, model="linear_irreversible", linearFmax=1e-7, linearKc=1.0)),
                                          PendularMat(**dict(good, model="linear_irreversible", linearFmax=4e-7, linearKc=1.0))),
           ["linearFmax", "1e-07", "4e-07"], "linearFmax differing below 1e-6 N")
