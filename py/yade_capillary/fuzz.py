@@ -18,9 +18,7 @@ disagree on accepting the same bridge), ``hang`` (no answer within ``timeout`` s
 on a hang or crash the worker is replaced and the run goes on with the next bridge.
 
 Deterministic: bridge i is drawn from ``numpy.random.default_rng([seed, i])``, independent of the
-chunking. If the installed kernels accept the keyword ``extrapolate`` (detected by a trivial call),
-half of the bridges pass ``extrapolate=True``; the others pass nothing, so the run works on the API
-with and without that keyword.
+chunking. Half of the bridges pass ``extrapolate=True``.
 
     from yade_capillary import fuzz
     report = fuzz.run(100000, seed=1)      # number of force evaluations
@@ -59,21 +57,11 @@ def names_parameter(message):
     return _NAMED.search(message) is not None
 
 
-def accepts_extrapolate():
-    """True if kernels.force and kernels.bridge take the keyword extrapolate."""
-    try:
-        kernels.force("willett_reduced", 0.0, 1e-3, 1e-3, 1e-11, 0.07, extrapolate=False)
-        kernels.bridge("willett_reduced", 1e-3, 1e-3, 1e-11, 0.07, extrapolate=False)
-        return True
-    except TypeError:
-        return False
-
-
 def _log_uniform(rng, lo, hi):
     return float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
 
 
-def bridge_spec(seed, i, with_extrapolate=False):
+def bridge_spec(seed, i):
     """Keyword arguments of kernels.bridge/force for bridge i of the run `seed` (deterministic)."""
     rng = np.random.default_rng([seed, i])
     models, rules = kernels.MODEL_NAMES, kernels.RUPTURE_NAMES
@@ -112,7 +100,7 @@ def bridge_spec(seed, i, with_extrapolate=False):
             kw["linear_kc"] = absurd(ABSURD_LINEAR) if rng.random() < 2 * p else _log_uniform(rng, 1e-3, 1e6)
         else:  # calibrated from another model (now and then from itself: an error)
             kw["calibrate_from"] = models[int(rng.integers(len(models)))]
-    if with_extrapolate and rng.random() < 0.5:
+    if rng.random() < 0.5:
         kw["extrapolate"] = True
     return kw
 
@@ -210,10 +198,10 @@ def check_bridge(spec, monotone, counts):
         _classify_error(counts, e, spec, "force(NaN gap)")
 
 
-def _worker(conn, seed, start, stop, with_extrapolate):
+def _worker(conn, seed, start, stop):
     monotone = {m["name"]: bool(m["monotone"]) for m in kernels.models()}
     for i in range(start, stop):
-        spec = bridge_spec(seed, i, with_extrapolate)
+        spec = bridge_spec(seed, i)
         counts = _Counts()
         check_bridge(spec, monotone.get(spec["model"], False), counts)
         conn.send((i, counts.c, counts.examples))
@@ -256,11 +244,9 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
     """Fuzz about n_evaluations force evaluations (GAPS_PER_BRIDGE per bridge). timeout [s]: a bridge that
     takes more CPU time than this is a hang (a valid bridge takes under 1 ms, calibration included).
     Returns a dict: counts (every category), examples (up to 3 per category), hung (index and spec of
-    every bridge that hung or crashed), by_model (model -> failure counts), extrapolate (whether the
-    keyword was exercised), seconds, seed."""
+    every bridge that hung or crashed), by_model (model -> failure counts), seconds, seed."""
     t0 = time.time()
     n = max(1, int(round(n_evaluations / GAPS_PER_BRIDGE)))
-    with_extrapolate = accepts_extrapolate()
     total = _Counts()
     hung = []  # (index, spec) of every hang and crash
     by_model = {}  # model -> failure counts
@@ -268,12 +254,12 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
     i = 0
     while i < n:
         parent, child = ctx.Pipe(duplex=False)
-        proc = ctx.Process(target=_worker, args=(child, seed, i, n, with_extrapolate), daemon=True)
+        proc = ctx.Process(target=_worker, args=(child, seed, i, n), daemon=True)
         proc.start()
         child.close()
         while i < n:
             if not _answer_within(parent, proc, timeout):
-                spec = bridge_spec(seed, i, with_extrapolate)
+                spec = bridge_spec(seed, i)
                 total.c["bridges"] += 1
                 total.c["evaluations"] += GAPS_PER_BRIDGE
                 hung.append((i, spec))
@@ -286,7 +272,7 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
             try:
                 j, c, ex = parent.recv()
             except EOFError:  # died between poll and recv
-                spec = bridge_spec(seed, i, with_extrapolate)
+                spec = bridge_spec(seed, i)
                 total.c["bridges"] += 1
                 total.c["evaluations"] += GAPS_PER_BRIDGE
                 total.fail("crash", spec, "bridge %d: worker died" % i)
@@ -294,7 +280,7 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
                 by_model.setdefault(spec["model"], dict.fromkeys(FAILURES, 0))["crash"] += 1
                 break
             assert j == i
-            model = bridge_spec(seed, i, with_extrapolate)["model"]
+            model = bridge_spec(seed, i)["model"]
             for k, v in c.items():
                 total.c[k] += v
                 if k in FAILURES and v:
@@ -310,7 +296,7 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
         proc.join()
         parent.close()
         i += 1 if i < n else 0  # skip the bridge that hung or crashed
-    return dict(counts=total.c, examples=total.examples, extrapolate=with_extrapolate, seconds=time.time() - t0, seed=seed,
+    return dict(counts=total.c, examples=total.examples, seconds=time.time() - t0, seed=seed,
                 hung=hung, by_model=by_model)
 
 
@@ -322,9 +308,8 @@ def failures(report):
 def format_report(report):
     c = report["counts"]
     lines = ["kernel fuzz: seed %d, %d bridges, %d evaluations (%d accepted, %d rejected with a named ValueError or "
-             "failed), extrapolate keyword %s, %.1f s" % (report["seed"], c["bridges"], c["evaluations"], c["accepted"],
-                                                          c["rejected"], "exercised" if report["extrapolate"] else
-                                                          "not available", report["seconds"])]
+             "failed), %.1f s" % (report["seed"], c["bridges"], c["evaluations"], c["accepted"], c["rejected"],
+                                   report["seconds"])]
     lines.append("  " + ", ".join("%s %d" % (k, c[k]) for k in FAILURES))
     for model, fc in sorted(report.get("by_model", {}).items()):
         lines.append("  %-20s %s" % (model, ", ".join("%s %d" % (k, v) for k, v in fc.items() if v)))

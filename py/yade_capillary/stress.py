@@ -24,14 +24,12 @@ LIQUID_RTOL = 1e-12  # liquid balance, relative to the liquid formed so far (the
 
 def material(model, Vb, gamma=0.0206, theta=0.0, tc=1e-4, en=0.5, et=0.5, density=2500.0, friction=0.3, rupture="willett",
              calibrate_from="willett_full", extrapolate=True):
-    """A wet PendularMat. extrapolate=True sets the material's `extrapolate` where the plugin has it
-    (wide radius ratios leave some bridges outside a model's fitted domain)."""
+    """A wet PendularMat. extrapolate=True: wide radius ratios leave some bridges outside a model's
+    fitted domain, which are then extrapolated instead of refused."""
     m = PendularMat(tc=tc, en=en, et=et, density=density, frictionAngle=friction, Vb=Vb, gamma=gamma, theta=theta,
-                    model=model, rupture=rupture, wet=True)
+                    model=model, rupture=rupture, extrapolate=extrapolate, wet=True)
     if model == "linear_irreversible":
         m.calibrateFrom = calibrate_from  # linearFmax = linearKc = 0: calibrated per bridge (Roy section 4.2)
-    if extrapolate and hasattr(m, "extrapolate"):
-        m.extrapolate = True
     return m
 
 
