@@ -70,4 +70,12 @@ inline std::string format_value(double x)
 	                            + (hint.empty() ? "" : "; " + hint));
 }
 
+// The radii of a pair (R2 may be a wall), checked against Plausible: the one check of every kernel.
+inline void check_radii(double R1, double R2)
+{
+	const std::string radii = "[" + format_value(Plausible::radius_min) + ", " + format_value(Plausible::radius_max) + "]";
+	if (!(R1 >= Plausible::radius_min && R1 <= Plausible::radius_max)) out_of_range("R1", R1, radii, "m");
+	if (!((R2 >= Plausible::radius_min && R2 <= Plausible::radius_max) || is_wall(R2))) out_of_range("R2", R2, radii + " or inf (a wall)", "m");
+}
+
 } // namespace capillary

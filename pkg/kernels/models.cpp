@@ -16,13 +16,10 @@ namespace {
 	}
 
 	// ---- domains ------------------------------------------------------------------------
-	// Bounds hold to rounding: V* = V/R^3 of a volume given as 0.1 R^3 may come out as 0.1 + 1 ulp.
-	constexpr double slack = 1e-12;
-	bool             in_domain(const Domain& d, const Pair& p)
+	bool in_domain(const Domain& d, const Pair& p)
 	{
-		return p.vstar >= d.vstar_min * (1 - slack) && p.vstar <= d.vstar_max * (1 + slack) && p.theta1 <= d.theta_max * (1 + slack)
-		        && p.theta2 <= d.theta_max * (1 + slack) && p.ratio <= d.ratio_max * (1 + slack) && (d.wall || !p.wall)
-		        && (!d.equal_angles || std::abs(p.theta1 - p.theta2) <= slack);
+		return d.allows_vstar(p.vstar) && d.allows_theta(p.theta1) && d.allows_theta(p.theta2) && d.allows_ratio(p.ratio)
+		        && (d.wall || !p.wall) && d.allows_angles(p.theta1, p.theta2);
 	}
 
 	// Names the first variable outside the domain, its value and the model's range.
@@ -30,11 +27,11 @@ namespace {
 	{
 		const std::string hint = std::string("the fitted domain of model ") + model + " (" + d.source
 		        + "); set extrapolate=True to evaluate the model at the nearest point of its domain";
-		if (!(p.vstar >= d.vstar_min * (1 - slack) && p.vstar <= d.vstar_max * (1 + slack)))
+		if (!d.allows_vstar(p.vstar))
 			out_of_range("V* = V/R^3", p.vstar, "[" + format_value(d.vstar_min) + ", " + format_value(d.vstar_max) + "]", "", hint);
 		for (const auto& [name, t] : { std::pair<const char*, double> { "theta1", p.theta1 }, { "theta2", p.theta2 } })
-			if (!(t <= d.theta_max * (1 + slack))) out_of_range(name, t, "[0, " + format_value(d.theta_max) + "]", "rad", hint);
-		if (!(p.ratio <= d.ratio_max * (1 + slack))) out_of_range("R_large/R_small", p.ratio, "[1, " + format_value(d.ratio_max) + "]", "", hint);
+			if (!d.allows_theta(t)) out_of_range(name, t, "[0, " + format_value(d.theta_max) + "]", "rad", hint);
+		if (!d.allows_ratio(p.ratio)) out_of_range("R_large/R_small", p.ratio, "[1, " + format_value(d.ratio_max) + "]", "", hint);
 		if (p.wall && !d.wall) throw std::invalid_argument(std::string("R2 = inf (a wall) is outside ") + hint);
 		throw std::invalid_argument("theta1 = " + format_value(p.theta1) + " rad and theta2 = " + format_value(p.theta2)
 		                            + " rad differ; equal contact angles are required by " + hint);
@@ -84,12 +81,12 @@ namespace {
 			return b;
 		}
 		if (!s.extrapolate || (p.wall && !M::domain.wall)) refuse(name, M::domain, p); // no nearest point for a wall
-		const Pair c         = clamped(M::domain, p);
-		double     rupture_c = rupture_distance(s.rupture, c);
-		M          m         = M::make(spec_of(s, c), c, rupture_c);
+		const Pair   c = clamped(M::domain, p);
+		const double rule_c = rupture_distance(s.rupture, c), rule_p = rupture_distance(s.rupture, p);
+		double       rupture_c = rule_c;
+		M            m         = M::make(spec_of(s, c), c, rupture_c);
 		// A model with its own range: stretched as the rupture rule stretches from c to p.
-		b.rupture              = M::own_rupture ? rupture_c * rupture_distance(s.rupture, p) / rupture_distance(s.rupture, c)
-		                                        : rupture_distance(s.rupture, p);
+		b.rupture = M::own_rupture ? rupture_c * rule_p / rule_c : rule_p;
 		Extrapolated<M> e      = { std::move(m), rupture_c / b.rupture, p.R * std::cos(p.theta) / (c.R * std::cos(c.theta)) };
 		b.force0               = e.force0();
 		b.m.template emplace<I + Models::n>(std::move(e));
@@ -266,9 +263,7 @@ YoungLaplaceTable YoungLaplaceTable::make(const BridgeSpec&, const Pair& p, doub
 
 Pair pair_of(const BridgeSpec& s)
 {
-	const std::string radii = "[" + format_value(Plausible::radius_min) + ", " + format_value(Plausible::radius_max) + "]";
-	if (!(s.R1 >= Plausible::radius_min && s.R1 <= Plausible::radius_max)) out_of_range("R1", s.R1, radii, "m");
-	if (!((s.R2 >= Plausible::radius_min && s.R2 <= Plausible::radius_max) || is_wall(s.R2))) out_of_range("R2", s.R2, radii + " or inf (a wall)", "m");
+	check_radii(s.R1, s.R2);
 	if (!(s.gamma >= Plausible::gamma_min && s.gamma <= Plausible::gamma_max))
 		out_of_range("gamma", s.gamma, "[" + format_value(Plausible::gamma_min) + ", " + format_value(Plausible::gamma_max) + "]", "N/m");
 	if (!(s.theta1 >= 0 && s.theta1 < pi / 2)) out_of_range("theta1", s.theta1, "[0, pi/2)", "rad");

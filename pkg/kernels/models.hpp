@@ -70,6 +70,13 @@ struct Domain {
 	bool        wall;                 // sphere-wall and sphere-facet bridges
 	bool        equal_angles;         // the two contact angles must be equal
 	const char* source;               // where the range comes from
+	// The bounds hold to rounding (slack): V* = V/R^3 of a volume given as 0.1 R^3 may come out as
+	// 0.1 + 1 ulp. Every check against a domain (kernels and YADE layer) goes through these.
+	static constexpr double slack = 1e-12;
+	bool allows_vstar(double vstar) const { return vstar >= vstar_min * (1 - slack) && vstar <= vstar_max * (1 + slack); }
+	bool allows_theta(double theta) const { return theta <= theta_max * (1 + slack); }
+	bool allows_ratio(double ratio) const { return ratio <= ratio_max * (1 + slack); }
+	bool allows_angles(double theta1, double theta2) const { return !equal_angles || std::abs(theta1 - theta2) <= slack; }
 };
 
 // Inputs of one bridge. R2 = wall_radius (infinity) means a sphere-wall (plane) bridge.

@@ -13,13 +13,6 @@ namespace {
 		{ NormalViscous::adams_perchard, "adams_perchard", "Elskamp2018 eq. (25), Adams & Perchard 1985" },
 	};
 
-	void check_radii(double R1, double R2)
-	{
-		const std::string radii = "[" + format_value(Plausible::radius_min) + ", " + format_value(Plausible::radius_max) + "]";
-		if (!(R1 >= Plausible::radius_min && R1 <= Plausible::radius_max)) out_of_range("R1", R1, radii, "m");
-		if (!((R2 >= Plausible::radius_min && R2 <= Plausible::radius_max) || is_wall(R2)))
-			out_of_range("R2", R2, radii + " or inf (a wall)", "m");
-	}
 	void check_eta(double eta)
 	{
 		if (!(eta >= 0 && eta <= viscous_limits::eta_max))

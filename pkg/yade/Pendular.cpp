@@ -106,7 +106,6 @@ namespace {
 		return result;
 	}
 
-	std::string exact(Real value) { return capillary::format_value(value); } // one wording with the kernels
 
 	// Stability limit of YADE's leapfrog (NewtonIntegrator: v(t+dt/2) = v(t-dt/2) + dt F(t)/m,
 	// x(t+dt) = x(t) + dt v(t+dt/2)) for m x'' + c x' + k x = 0 with the damping force taken from
@@ -173,8 +172,8 @@ void PendularCheck::action()
 		warnedDt = scene->dt;
 		++dtWarnings;
 		LOG_WARN(
-		        "O.dt = " << exact(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
-		                  << exact(criticalDt)
+		        "O.dt = " << capillary::format_value(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
+		                  << capillary::format_value(criticalDt)
 		                  << " s of the interactions so far: contacts may gain energy or diverge; yade_capillary.scene.stable_dt() gives a "
 		                     "stable time step");
 	}
@@ -307,8 +306,8 @@ void PendularMat::validate()
 		const bool calibrated = modelId == capillary::Model::linear_irreversible && !(linearFmax > 0 && linearKc > 0);
 		for (const capillary::Model m : { modelId, calibrated ? calibrateId : modelId }) {
 			const capillary::ModelInfo& mi = capillary::info(m);
-			if (!(theta <= mi.domain.theta_max * (1 + 1e-12)))
-				badValue(c, "theta", theta, ("[0, " + exact(mi.domain.theta_max) + "], the domain of model " + mi.name + " (" + mi.domain.source
+			if (!mi.domain.allows_theta(theta))
+				badValue(c, "theta", theta, ("[0, " + capillary::format_value(mi.domain.theta_max) + "], the domain of model " + mi.name + " (" + mi.domain.source
 				                             + "); set extrapolate=True to extrapolate").c_str(),
 				         "rad");
 		}
@@ -424,8 +423,8 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 	        && isSet(m2.cs);
 	if (byTime == byStiff) {
 		auto given = [](const PendularMat& m) {
-			return "material " + std::to_string(m.id) + ": tc = " + exact(m.tc) + ", en = " + exact(m.en) + ", et = " + exact(m.et)
-			        + ", kn = " + exact(m.kn) + ", cn = " + exact(m.cn) + ", ks = " + exact(m.ks) + ", cs = " + exact(m.cs);
+			return "material " + std::to_string(m.id) + ": tc = " + capillary::format_value(m.tc) + ", en = " + capillary::format_value(m.en) + ", et = " + capillary::format_value(m.et)
+			        + ", kn = " + capillary::format_value(m.kn) + ", cn = " + capillary::format_value(m.cn) + ", ks = " + capillary::format_value(m.ks) + ", cs = " + capillary::format_value(m.cs);
 		};
 		throw std::invalid_argument(
 		        "PendularMat: give either tc, en, et or kn, cn, ks, cs on both materials (" + given(m1) + "; " + given(m2) + ")");
@@ -434,8 +433,8 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 		const Real tc = (m1.tc + m2.tc) / 2, en = (m1.en + m2.en) / 2, et = (m1.et + m2.et) / 2;
 		if (!(massR > 0))
 			throw std::invalid_argument(
-			        "PendularMat with tc, en, et: bodies need a positive mass (masses " + exact(body1->state->mass) + " and "
-			        + exact(body2->state->mass) + " kg)");
+			        "PendularMat with tc, en, et: bodies need a positive mass (masses " + capillary::format_value(body1->state->mass) + " and "
+			        + capillary::format_value(body2->state->mass) + " kg)");
 		const Real omega = Mathr::PI / tc;                                            // half period of the damped oscillation = tc
 		const Real x     = (m1.en == m2.en) ? m1.dampingRatioN : dampingRatioFor(en); // beta / omega
 		phys->kn         = massR * omega * omega * (1 + x * x);
@@ -468,8 +467,8 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		mustMatch("rupture", m1.rupture, m2.rupture);
 		mustMatch("forceInContact", m1.forceInContact ? "True" : "False", m2.forceInContact ? "True" : "False");
 		// Compared as values: 1e-7 and 4e-7 N are different, and the message shows both exactly.
-		if (m1.linearFmax != m2.linearFmax) mustMatch("linearFmax", exact(m1.linearFmax), exact(m2.linearFmax));
-		if (m1.linearKc != m2.linearKc) mustMatch("linearKc", exact(m1.linearKc), exact(m2.linearKc));
+		if (m1.linearFmax != m2.linearFmax) mustMatch("linearFmax", capillary::format_value(m1.linearFmax), capillary::format_value(m2.linearFmax));
+		if (m1.linearKc != m2.linearKc) mustMatch("linearKc", capillary::format_value(m1.linearKc), capillary::format_value(m2.linearKc));
 		mustMatch("calibrateFrom", m1.calibrateFrom, m2.calibrateFrom);
 		mustMatch("extrapolate", m1.extrapolate ? "True" : "False", m2.extrapolate ? "True" : "False");
 		phys->R1             = radiusOf(body1);
