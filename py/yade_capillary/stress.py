@@ -3,8 +3,9 @@
 Used by tests/yade/test_stress_dynamic.py, test_threads.py and test_save_continue.py:
 
 * ``material(model, ...)``: a wet PendularMat (linear spring-dashpot from tc, en, et);
-* ``contact_dt_limit(tc, en)`` and ``stable_dt(tc, en)``: the stability limit of the central-difference
-  (leapfrog) integration of one contact of that law (``yade_capillary.scene.stable_dt(safety=1)``);
+* ``oscillator_limit(k, c, m)``, ``contact_dt_limit(tc, en)`` and ``stable_dt(tc, en)``: the stability
+  limit of the central-difference (leapfrog) integration of a damped oscillator and of one contact of
+  that law, written independently of the plugin (``yade_capillary.scene.stable_dt(safety=1)``);
 * ``box_packing(...)``: polydisperse spheres in a closed box of walls (``utils.wall``) or facets
   (``geom.facetBox``), with the engines of ``yade_capillary.scene.engines``;
 * ``invariants(law)`` / ``check(ck, law, where)``: finite positions, velocities and forces, bridge count,
@@ -45,6 +46,14 @@ def damping_ratio_x(en):
     return (lo + hi) / 2
 
 
+def oscillator_limit(k, c, m):
+    """Stability limit [s] of the central-difference (leapfrog) integration of m x'' + c x' + k x = 0:
+    (2/omega0)(sqrt(1 + zeta^2) - zeta), omega0^2 = k/m, zeta = c/(2 sqrt(k m)) (Belytschko, Liu &
+    Moran 2000, section 6.3); 2/omega0 undamped."""
+    omega0, zeta = math.sqrt(k / m), c / (2 * math.sqrt(k * m))
+    return 2 / omega0 * (math.sqrt(1 + zeta * zeta) - zeta)
+
+
 def contact_dt_limit(tc, en):
     """Stability limit [s] of the central-difference integration of one contact of the law.
 
@@ -53,10 +62,8 @@ def contact_dt_limit(tc, en):
     and the damping ratio is zeta = cn / (2 sqrt(kn m)) = x / sqrt(1 + x^2). Undamped: dt < 2/omega0;
     damped: dt < (2/omega0)(sqrt(1 + zeta^2) - zeta). The tangential spring (ks = 2/7 kn with the
     rotation of spheres, I = 2/5 m R^2) has the same frequency. Returns the damped limit."""
-    x = damping_ratio_x(en)
-    omega0 = math.pi / tc * math.sqrt(1 + x * x)
-    zeta = x / math.sqrt(1 + x * x)
-    return 2 / omega0 * (math.sqrt(1 + zeta * zeta) - zeta)
+    x, omega = damping_ratio_x(en), math.pi / tc
+    return oscillator_limit(omega * omega * (1 + x * x), 2 * omega * x, 1.0)  # per unit mass
 
 
 def stable_dt(tc, en, fraction=0.9, parallel_contacts=1):

@@ -9,25 +9,13 @@ from yade.utils import sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines, stable_dt
+from yade_capillary.stress import damping_ratio_x as damping_ratio
+from yade_capillary.stress import oscillator_limit as limit
 from yade_capillary.testing import Checker
 
 ck = Checker("test_timestep")
 R, rho = 1e-3, 2500.0
 mass = rho * 4 / 3 * math.pi * R ** 3
-
-
-def damping_ratio(en):
-    """x = beta/omega_d with en = exp(-x (pi - 2 atan x)) (Schwager & Poeschel 2007), by bisection."""
-    lo, hi = 0.0, 1e8
-    for _ in range(200):
-        x = (lo + hi) / 2
-        lo, hi = (x, hi) if x * (math.pi - 2 * math.atan(x)) < -math.log(en) else (lo, x)
-    return (lo + hi) / 2
-
-
-def limit(k, c, m):
-    w0, z = math.sqrt(k / m), c / (2 * math.sqrt(k * m))
-    return 2 / w0 * (math.sqrt(1 + z * z) - z)
 
 
 def expected_tc(tc, en, et, m):
