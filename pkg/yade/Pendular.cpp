@@ -495,77 +495,41 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 	}
 }
 
+namespace {
+	// Forces of YADE's InteractionLoop: straight into the scene's force container.
+	struct SceneSink {
+		Scene*     scene;
+		Body::id_t id1, id2;
+		bool       enabled; // Interaction::isActive
+		void       force(const Vector3r& f) const
+		{
+			if (!enabled) return;
+			scene->forces.addForce(id1, -f);
+			scene->forces.addForce(id2, f);
+		}
+		void forceTorque(const Vector3r& f, const Vector3r& t1, const Vector3r& t2) const
+		{
+			if (!enabled) return;
+			force(f);
+			scene->forces.addTorque(id1, t1);
+			scene->forces.addTorque(id2, t2);
+		}
+	};
+} // namespace
+
 bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
 {
-	const ScGeom& geom = static_cast<const ScGeom&>(*ig);
-	PendularPhys& phys = static_cast<PendularPhys&>(*ip);
-	const auto    id1 = I->getId1(), id2 = I->getId2();
-
-	if (geom.penetrationDepth < 0) { // separated
-		phys.shearForce = Vector3r::Zero();
-		if (!phys.active) {
-			// No bridge yet (or dry): nothing to keep. Returning false resets the interaction, so the
-			// collider removes it once the bounding boxes part, and the Ig2 makes it real again at
-			// contact, where the bridge forms; a pair that stays close merely gets new physics.
-			phys.normalForce = Vector3r::Zero();
-			return false;
-		}
-		const Real gap = -geom.penetrationDepth;
-		if (gap > phys.bridge.rupture) {
-			phys.active = false;
-			phys.Fcap   = 0;
-			nBridges -= 1;
-			liquidVolume -= phys.Vb;
-			liquidReleased += phys.Vb;
-			return false;
-		}
-		phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
-		phys.normalForce = -phys.Fcap * geom.normal;
-		if (I->isActive) {
-			addForce(id1, -phys.normalForce, scene);
-			addForce(id2, phys.normalForce, scene);
-		}
-		return true;
-	}
-
-	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
-	if (!(phys.kn > 0)) return false;
-	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
-	if (phys.wet && !phys.active) {
-		phys.active = true;
-		nBridges += 1;
-		liquidVolume += phys.Vb;
-		liquidFormed += phys.Vb;
-	}
-	const State&   de1    = *Body::byId(id1, scene)->state;
-	const State&   de2    = *Body::byId(id2, scene)->state;
-	const Vector3r shift2 = scene->isPeriodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero();
-	const Vector3r shiftV = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
-	const Vector3r c1x    = geom.contactPoint - de1.pos;
-	const Vector3r c2x    = geom.contactPoint - de2.pos - shift2;
-	const Vector3r relVel = (de1.vel + de1.angVel.cross(c1x)) - (de2.vel + de2.angVel.cross(c2x)) + shiftV;
-	const Real     vn     = geom.normal.dot(relVel); // > 0: approaching
-	const Vector3r vs     = relVel - vn * geom.normal;
-
-	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
-	const Real fn    = math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn);
-	Vector3r&  shear = phys.shearForce;
-	shear            = geom.rotate(shear);
-	shear += phys.ks * scene->dt * vs;
-	Vector3r   shearVisc = Vector3r::Zero();
-	const Real maxFs     = fn * phys.tangensOfFrictionAngle;
-	if (shear.squaredNorm() > maxFs * maxFs) shear *= maxFs / shear.norm(); // Coulomb slip: elastic part capped, no viscous part
-	else shearVisc = phys.cs * vs;
-	phys.Fcap        = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
-	phys.normalForce = (fn - phys.Fcap) * geom.normal;
-	if (I->isActive) {
-		const Vector3r f = phys.normalForce + shear + shearVisc;
-		addForce(id1, -f, scene);
-		addForce(id2, f, scene);
-		addTorque(id1, -c1x.cross(f), scene);
-		addTorque(id2, c2x.cross(f), scene);
-	}
-	return true;
+	const auto      id1 = I->getId1(), id2 = I->getId2();
+	const State&    de1 = *Body::byId(id1, scene)->state;
+	const State&    de2 = *Body::byId(id2, scene)->state;
+	const bool      periodic = scene->isPeriodic;
+	const PendularKinematics k { de1.pos, de1.vel, de1.angVel, de2.pos, de2.vel, de2.angVel,
+		                     periodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero(),
+		                     periodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero() };
+	SceneSink       sink { scene, id1, id2, I->isActive };
+	const ScGeom&   geom   = static_cast<const ScGeom&>(*ig);
+	const auto      rotate = [&geom](Vector3r& v) { geom.rotate(v); };
+	return apply(geom, static_cast<PendularPhys&>(*ip), k, scene->dt, rotate, sink);
 }
 
 } // namespace yade

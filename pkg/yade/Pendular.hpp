@@ -195,9 +195,23 @@ public:
 };
 REGISTER_SERIALIZABLE(PendularCheck);
 
+// Positions and velocities of the two bodies of an interaction, as the contact law reads them;
+// shift2 and shiftVel move body 2 to its periodic image (zero without periodic cell).
+struct PendularKinematics {
+	const Vector3r &pos1, &vel1, &angVel1, &pos2, &vel2, &angVel2;
+	Vector3r        shift2, shiftVel;
+};
+
 class Law2_ScGeom_PendularPhys_Bridge : public LawFunctor {
 public:
 	bool go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I) override;
+	// The contact law of one interaction: updates phys and the bridge totals, hands the force to
+	// `sink` (body 1 gets -f, body 2 +f) and returns false when the interaction is to be reset.
+	// Used by go() (YADE's InteractionLoop) and by PendularLoop, so both compute the same numbers.
+	// Sink: force(f) for a central force, forceTorque(f, t1, t2) with the torques on bodies 1, 2.
+	// rotate(v): ScGeom::rotate, the shear force carried from the last contact plane to this one.
+	template <class Rotate, class Sink>
+	bool apply(const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink);
 	FUNCTOR2D(ScGeom, PendularPhys);
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
@@ -217,5 +231,71 @@ public:
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Law2_ScGeom_PendularPhys_Bridge);
+
+template <class Rotate, class Sink>
+inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
+        const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink)
+{
+	if (geom.penetrationDepth < 0) { // separated
+		phys.shearForce = Vector3r::Zero();
+		if (!phys.active) {
+			// No bridge yet (or dry): nothing to keep. Returning false resets the interaction, so the
+			// collider removes it once the bounding boxes part, and the Ig2 makes it real again at
+			// contact, where the bridge forms; a pair that stays close merely gets new physics.
+			phys.normalForce = Vector3r::Zero();
+			return false;
+		}
+		const Real gap = -geom.penetrationDepth;
+		if (gap > phys.bridge.rupture) {
+			phys.active = false;
+			phys.Fcap   = 0;
+			nBridges -= 1;
+			liquidVolume -= phys.Vb;
+			liquidReleased += phys.Vb;
+			return false;
+		}
+		// A separated bridge needs only the gap and the normal: no tangential work, no torque.
+		phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
+		phys.normalForce = -phys.Fcap * geom.normal;
+		sink.force(phys.normalForce);
+		return true;
+	}
+
+	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
+	if (!(phys.kn > 0)) return false;
+	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
+	if (phys.wet && !phys.active) {
+		phys.active = true;
+		nBridges += 1;
+		liquidVolume += phys.Vb;
+		liquidFormed += phys.Vb;
+	}
+	const Vector3r c1x    = geom.contactPoint - k.pos1;
+	const Vector3r c2x    = geom.contactPoint - k.pos2 - k.shift2;
+	const Vector3r relVel = (k.vel1 + k.angVel1.cross(c1x)) - (k.vel2 + k.angVel2.cross(c2x)) + k.shiftVel;
+	const Real     vn     = geom.normal.dot(relVel); // > 0: approaching
+
+	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
+	const Real fn = math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn);
+	Vector3r&  shear = phys.shearForce;
+	Vector3r   shearVisc = Vector3r::Zero();
+	if (phys.tangensOfFrictionAngle > 0) {
+		const Vector3r vs = relVel - vn * geom.normal;
+		rotate(shear);
+		shear += phys.ks * dt * vs;
+		const Real maxFs = fn * phys.tangensOfFrictionAngle;
+		if (shear.squaredNorm() > maxFs * maxFs) shear *= maxFs / shear.norm(); // Coulomb slip: elastic part capped, no viscous part
+		else shearVisc = phys.cs * vs;
+	} else {
+		// Frictionless (Gladkyy2014: particle friction 0): the Coulomb cap is 0, so the tangential
+		// spring and dashpot would be cut to zero anyway; skip them.
+		shear = Vector3r::Zero();
+	}
+	phys.Fcap        = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
+	phys.normalForce = (fn - phys.Fcap) * geom.normal;
+	const Vector3r f = phys.normalForce + shear + shearVisc;
+	sink.forceTorque(f, -c1x.cross(f), c2x.cross(f));
+	return true;
+}
 
 } // namespace yade

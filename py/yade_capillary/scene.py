@@ -3,10 +3,29 @@ from yade import O
 from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
                           Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
                           Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
-                          PendularCheck, PendularMat)
+                          PendularCheck, PendularLoop, PendularMat)
 
 
-def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop=None):
+LOOPS = ("fused", "standard")
+
+
+def interaction_loop(loop="fused", detection_factor=1.0, law_label="capillaryLaw"):
+    """The interaction loop with the yade-capillary functors.
+
+    loop: "fused" (PendularLoop: sphere-sphere pairs of PendularMat bodies in one fused pass, the
+    same numbers as YADE's loop) or "standard" (YADE's InteractionLoop with the same functors).
+    detection_factor and law_label as in :func:`engines`.
+    """
+    if loop not in LOOPS:
+        raise ValueError("loop = %r is not one of %s (or an InteractionLoop instance)" % (loop, ", ".join(LOOPS)))
+    functors = ([Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=detection_factor), Ig2_Facet_Sphere_ScGeom(),
+                 Ig2_Wall_Sphere_ScGeom()],
+                [Ip2_PendularMat_PendularMat_PendularPhys()],
+                [Law2_ScGeom_PendularPhys_Bridge(label=law_label)])
+    return PendularLoop(*functors, label="interactionLoop") if loop == "fused" else InteractionLoop(*functors, label="interactionLoop")
+
+
+def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused"):
     """Return the usual engine list with the capillary law.
 
     gravity [m/s^2], damping: NewtonIntegrator's numerical damping [-] (0 for physical runs),
@@ -15,18 +34,18 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     A bridge forms at contact, so no enlarged detection range is needed: once real, an interaction
     keeps its geometry until the law ends it at rupture. detection_factor > 1 (aabbEnlargeFactor and
     interactionDetectionFactor) creates interactions before contact, without bridges; the law
-    resets them while the pair is apart, so they are removed when the spheres move away. loop: an
-    InteractionLoop to use instead of ours (e.g. YADE's built-in capillary law, for comparisons).
+    resets them while the pair is apart, so they are removed when the spheres move away.
+    loop: "fused" (default, PendularLoop), "standard" (YADE's InteractionLoop with our functors),
+    or an InteractionLoop instance to use instead (e.g. YADE's built-in capillary law, for
+    comparisons). The collider is labelled ``collider`` (yade.mpy looks it up by that label).
     """
+    if isinstance(loop, str):
+        loop = interaction_loop(loop, detection_factor, law_label)
     return [
         ForceResetter(),
-        InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor), Bo1_Facet_Aabb(), Bo1_Wall_Aabb()]),
-        loop if loop is not None else InteractionLoop(
-            [Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=detection_factor), Ig2_Facet_Sphere_ScGeom(),
-             Ig2_Wall_Sphere_ScGeom()],
-            [Ip2_PendularMat_PendularMat_PendularPhys()],
-            [Law2_ScGeom_PendularPhys_Bridge(label=law_label)],
-        ),
+        InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor), Bo1_Facet_Aabb(), Bo1_Wall_Aabb()],
+                              label="collider"),
+        loop,
         PendularCheck(),
         *extra,
         NewtonIntegrator(gravity=gravity, damping=damping),

@@ -126,9 +126,9 @@ def prepare(config, case, path, seed=None, log=print):
     return info
 
 
-def run_engines(info, loop=None):
+def run_engines(info, loop="fused"):
     """Engines of the running cell: gravity, no numerical damping, the rotating walls turned about z
-    with the configured period; `loop` replaces the InteractionLoop (e.g. another law)."""
+    with the configured period; `loop` as in scene.engines ("fused", "standard" or an InteractionLoop, e.g. another law)."""
     from yade.wrapper import RotationEngine
 
     from .scene import engines

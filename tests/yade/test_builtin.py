@@ -45,7 +45,7 @@ for c in cases.GLADKYY2014_TABLE1:
         rupture = kernels.bridge(ours, c.R1_m, c.R2_m, c.volume_m3, c.gamma_N_m, c.theta_rad)["rupture"]
         gaps = [f * rupture for f in FRACTIONS]
         mine = forces(c, lambda: PendularMat(tc=2e-5, en=0.83, et=0.83, density=2500, wet=True, Vb=c.volume_m3, gamma=c.gamma_N_m,
-                                             theta=c.theta_rad, model=ours), None, gaps)
+                                             theta=c.theta_rad, model=ours), "fused", gaps)
         loop = InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()], [Law2_ScGeom_ViscElCapPhys_Basic()])
         builtin = forces(c, lambda: ViscElCapMat(tc=2e-5, en=0.83, et=0.83, density=2500, Capillar=True, Vb=c.volume_m3, gamma=c.gamma_N_m,
                                                  theta=math.degrees(c.theta_rad), CapillarType=theirs), loop, gaps)

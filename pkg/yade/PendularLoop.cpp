@@ -1,0 +1,333 @@
+#include "PendularLoop.hpp"
+
+#include <pkg/common/Facet.hpp>
+#include <pkg/common/Wall.hpp>
+#include <pkg/dem/Ig2_Sphere_Sphere_ScGeom.hpp>
+
+#include <typeinfo>
+
+#ifdef YADE_OPENMP
+#include <omp.h>
+#endif
+
+namespace yade {
+
+YADE_PLUGIN((PendularLoop));
+CREATE_LOGGER(PendularLoop);
+
+namespace {
+	int threadNum()
+	{
+#ifdef YADE_OPENMP
+		return omp_get_thread_num();
+#else
+		return 0;
+#endif
+	}
+
+	// Forces of the fused pass: into per-thread arrays indexed by body id, handed to the scene's
+	// force container once per body at the end of the step (PendularLoop::flushForces). In one
+	// thread the sums are those of InteractionLoop, in the same order.
+	struct ThreadSink {
+		Vector3r * forces, *torques;
+		Body::id_t id1, id2;
+		bool       enabled; // Interaction::isActive
+		void       force1(const Vector3r& f) const
+		{
+			forces[id1] -= f;
+			forces[id2] += f;
+		}
+		void forceTorque(const Vector3r& f, const Vector3r& t1, const Vector3r& t2) const
+		{
+			if (!enabled) return;
+			force1(f);
+			torques[id1] += t1;
+			torques[id2] += t2;
+		}
+		void force(const Vector3r& f) const
+		{
+			if (enabled) force1(f);
+		}
+	};
+} // namespace
+
+// The functors YADE's dispatchers choose for two PendularMat spheres, resolved once per step with
+// sample objects (a dispatcher resolves by class only). The fused pass is used only when they are
+// exactly the functors it reproduces.
+struct PendularLoop::Resolved {
+	const Ig2_Sphere_Sphere_ScGeom*          ig2 = nullptr;
+	Ip2_PendularMat_PendularMat_PendularPhys* ip2 = nullptr;
+	Law2_ScGeom_PendularPhys_Bridge*         law = nullptr; // also for walls and facets
+	bool                                     fused = false;
+	vector<IntrCallback::FuncPtr>            callbacks;
+};
+
+bool PendularLoop::resolve(Resolved& r)
+{
+	static shared_ptr<Shape>    sphere(new Sphere);
+	static shared_ptr<Material> material(new PendularMat);
+	static shared_ptr<IGeom>    geom(new ScGeom);
+	static shared_ptr<IPhys>    phys(new PendularPhys);
+	bool                        swap = false;
+	const auto                  ig2 = geomDispatcher->getFunctor2D(sphere, sphere, swap);
+	const auto                  ip2 = physDispatcher->getFunctor2D(material, material, swap);
+	const auto                  law = lawDispatcher->getFunctor2D(geom, phys, swap);
+	r.law                           = dynamic_cast<Law2_ScGeom_PendularPhys_Bridge*>(law.get());
+	r.ip2                           = dynamic_cast<Ip2_PendularMat_PendularMat_PendularPhys*>(ip2.get());
+	// Exactly Ig2_Sphere_Sphere_ScGeom: a subclass (ScGeom6D) makes another geometry.
+	if (ig2 && typeid(*ig2) == typeid(Ig2_Sphere_Sphere_ScGeom)) r.ig2 = static_cast<const Ig2_Sphere_Sphere_ScGeom*>(ig2.get());
+	r.fused = r.ig2 && r.ip2 && r.law;
+	return r.fused;
+}
+
+void PendularLoop::gather()
+{
+	const auto&  bodies = *scene->bodies;
+	const size_t n      = bodies.size();
+	particles.resize(n);
+	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
+	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
+	for (size_t id = 0; id < n; ++id) {
+		Particle&   p = particles[id];
+		const auto& b = bodies[id];
+		if (!b) {
+			p.kind = missing;
+			continue;
+		}
+		const State& s = *b->state;
+		p.pos          = s.pos;
+		p.vel          = s.vel;
+		p.angVel       = s.angVel;
+		p.subdomain    = b->subdomain;
+		p.radius       = 0;
+		if (b->isClump()) p.kind = clump;
+		else if (!b->shape || !b->material || b->material->getClassIndex() != pendularIndex)
+			p.kind = other;
+		else {
+			const int shape = b->shape->getClassIndex();
+			if (shape == sphereIndex) {
+				p.kind   = pendularSphere;
+				p.radius = static_cast<const Sphere&>(*b->shape).radius;
+			} else
+				p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
+		}
+	}
+}
+
+void PendularLoop::action()
+{
+	geomDispatcher->scene = physDispatcher->scene = lawDispatcher->scene = scene;
+	geomDispatcher->updateScenePtr();
+	physDispatcher->updateScenePtr();
+	lawDispatcher->updateScenePtr();
+	Resolved r;
+	resolve(r);
+	for (const auto& cb : callbacks) {
+		cb->scene = scene;
+		r.callbacks.push_back(cb->stepInit());
+	}
+	cellHsize = scene->isPeriodic ? scene->cell->hSize : Matrix3r::Zero();
+	gather();
+#ifdef YADE_OPENMP
+	const int threads = ompThreads > 0 ? math::min(ompThreads, omp_get_max_threads()) : omp_get_max_threads();
+#else
+	const int threads = 1;
+#endif
+	threadForce.resize(threads);
+	threadTorque.resize(threads);
+	for (int t = 0; t < threads; ++t) {
+		threadForce[t].assign(particles.size(), Vector3r::Zero());
+		threadTorque[t].assign(particles.size(), Vector3r::Zero());
+	}
+
+	// As InteractionLoop: with a collider that does not erase interactions itself, the potential
+	// interactions it did not see in this step are skipped.
+	const bool removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
+	const auto&      interactions = *scene->interactions;
+	const long       size         = scene->interactions->size();
+	const int        subdomain    = scene->subdomain;
+	long             fused = 0, dispatchedCount = 0;
+	// Static schedule: each thread gets the same interactions in every run, so a run with a given
+	// number of threads is reproducible.
+#ifdef YADE_OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : fused, dispatchedCount)
+#endif
+	for (long i = 0; i < size; ++i) {
+		const shared_ptr<Interaction>& I = interactions[i];
+		if (removeUnseen && !I->isReal() && I->iterLastSeen < scene->iter) continue;
+		const Body::id_t id1 = I->getId1(), id2 = I->getId2();
+		const Particle*  p1 = size_t(id1) < particles.size() ? &particles[id1] : nullptr;
+		const Particle*  p2 = size_t(id2) < particles.size() ? &particles[id2] : nullptr;
+		if (!p1 || !p2 || p1->kind == missing || p2->kind == missing) {
+			scene->interactions->requestErase(I);
+			continue;
+		}
+		// yade.mpy: an interaction of two bodies of other subdomains is not this rank's.
+		if (subdomain != p1->subdomain && subdomain != p2->subdomain) {
+			scene->interactions->requestErase(I);
+			continue;
+		}
+		if (p1->kind == clump || p2->kind == clump) continue;
+		if (r.fused && p1->kind == pendularSphere && p2->kind == pendularSphere) {
+			++fused;
+			sphereSphere(I, r, threadNum());
+		} else {
+			++dispatchedCount;
+			dispatched(I, r, threadNum());
+		}
+	}
+	nFused      = fused;
+	nDispatched = dispatchedCount;
+	flushForces();
+}
+
+void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread)
+{
+	const Particle& p1 = particles[I->getId1()];
+	const Particle& p2 = particles[I->getId2()];
+	const Vector3r  shift2 = scene->isPeriodic ? Vector3r(cellHsize * I->cellDist.cast<Real>()) : Vector3r::Zero();
+	Vector3r        normal = (p2.pos + shift2) - p1.pos;
+	const Real      sumR   = p1.radius + p2.radius;
+	const bool      wasReal = I->isReal();
+	// A potential interaction: one distance check. Ig2_Sphere_Sphere_ScGeom would make it real
+	// within interactionDetectionFactor (r1 + r2), but apart and without a bridge the law gives no
+	// force and resets it; so it becomes real at contact, where the bridge forms.
+	if (!wasReal && normal.squaredNorm() > sumR * sumR) return;
+
+	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute, in their order of operations.
+	const bool isNew = !I->geom;
+	if (isNew) I->geom = shared_ptr<ScGeom>(new ScGeom());
+	ScGeom&    geom = static_cast<ScGeom&>(*I->geom);
+	const Real norm = normal.norm();
+	normal /= norm;
+	const Real depth = sumR - norm;
+	if (!wasReal && depth < 0) { // touching within round-off of the squared check, not in depth
+		I->geom.reset();
+		return;
+	}
+	geom.contactPoint     = p1.pos + (p1.radius - 0.5 * depth) * normal;
+	geom.penetrationDepth = depth;
+	geom.radius1          = p1.radius;
+	geom.radius2          = p2.radius;
+	const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
+	// ScGeom::rotate's rotation of the shear force from the last normal to this one (its axes are
+	// private to ScGeom: kept here, and used by the law through `rotate`).
+	Vector3r orthonormalAxis = Vector3r::Zero(), twistAxis = Vector3r::Zero();
+	if (depth >= 0 || isNew) { // in contact: what the law's tangential spring reads
+		if (!isNew) {
+			orthonormalAxis  = geom.normal.cross(normal);
+			const Real angle = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
+			twistAxis        = angle * geom.normal;
+		}
+		geom.normal = normal;
+		Vector3r relVel;
+		if (r.ig2->avoidGranularRatcheting) {
+			const Real alpha = (geom.radius1 + geom.radius2) / (geom.radius1 + geom.radius2 - geom.penetrationDepth);
+			relVel = (p2.vel - p1.vel) * alpha + p2.angVel.cross(-geom.radius2 * normal) - p1.angVel.cross(geom.radius1 * normal);
+			relVel += alpha * shiftVel;
+		} else {
+			const Vector3r c1x = geom.contactPoint - p1.pos, c2x = geom.contactPoint - (p2.pos + shift2);
+			relVel             = (p2.vel + p2.angVel.cross(c2x)) - (p1.vel + p1.angVel.cross(c1x));
+			relVel += shiftVel;
+		}
+		relVel        = relVel - normal.dot(relVel) * normal;
+		geom.shearInc = relVel * scene->dt;
+	} else
+		geom.normal = normal; // a separated bridge: the gap and the normal only
+	const auto rotate = [&orthonormalAxis, &twistAxis](Vector3r& v) {
+		v -= v.cross(orthonormalAxis);
+		v -= v.cross(twistAxis);
+	};
+
+	if (!I->phys) {
+		const auto& b1 = Body::byId(I->getId1(), scene);
+		const auto& b2 = Body::byId(I->getId2(), scene);
+		r.ip2->go(b1->material, b2->material, I);
+	}
+	if (!wasReal) I->iterMadeReal = scene->iter;
+	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel };
+	ThreadSink sink { threadForce[thread].data(), threadTorque[thread].data(), I->getId1(), I->getId2(), I->isActive };
+	if (!r.law->apply(geom, static_cast<PendularPhys&>(*I->phys), k, scene->dt, rotate, sink)) {
+		scene->interactions->requestErase(I);
+		return;
+	}
+	for (size_t j = 0; j < r.callbacks.size(); ++j)
+		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), I.get());
+}
+
+// Every interaction that is not fused: the steps of InteractionLoop (geometry, physics and law
+// functors chosen by the dispatchers and cached on the interaction), except that our own law runs
+// inline into the thread's arrays, so that the forces of a body are summed in one place.
+void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread)
+{
+	const shared_ptr<Body>& b1_ = Body::byId(I->getId1(), scene);
+	const shared_ptr<Body>& b2_ = Body::byId(I->getId2(), scene);
+	if (!I->functorCache.geomExists || !b1_->shape || !b2_->shape) return;
+	bool swap = false;
+	if (!I->functorCache.geom) {
+		I->functorCache.geom = geomDispatcher->getFunctor2D(b1_->shape, b2_->shape, swap);
+		if (!I->functorCache.geom) {
+			I->functorCache.geomExists = false;
+			return;
+		}
+	}
+	if (swap) I->swapOrder();
+	const shared_ptr<Body>& b1      = swap ? b2_ : b1_;
+	const shared_ptr<Body>& b2      = swap ? b1_ : b2_;
+	const bool              wasReal = I->isReal();
+	const Vector3r          shift2  = scene->isPeriodic ? Vector3r(cellHsize * I->cellDist.cast<Real>()) : Vector3r::Zero();
+	if (!I->functorCache.geom->go(b1->shape, b2->shape, *b1->state, *b2->state, shift2, /*force*/ false, I)) {
+		if (wasReal) {
+			LOG_WARN("IGeomFunctor returned false on existing interaction " << I->getId1() << "-" << I->getId2());
+			scene->interactions->requestErase(I);
+		}
+		return;
+	}
+	if (!I->functorCache.phys) {
+		I->functorCache.phys = physDispatcher->getFunctor2D(b1->material, b2->material, swap);
+		if (!I->functorCache.phys)
+			throw std::runtime_error(
+			        "Undefined or ambiguous IPhys dispatch for types " + b1->material->getClassName() + " and " + b2->material->getClassName() + ".");
+	}
+	I->functorCache.phys->go(b1->material, b2->material, I);
+	if (!wasReal) I->iterMadeReal = scene->iter;
+	if (!I->functorCache.constLaw) {
+		I->functorCache.constLaw = lawDispatcher->getFunctor2D(I->geom, I->phys, swap);
+		if (!I->functorCache.constLaw)
+			throw std::runtime_error(
+			        "No Law2 functor handles interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2()) + " (geometry "
+			        + I->geom->getClassName() + ", physics " + I->phys->getClassName() + ")");
+	}
+	bool keep;
+	if (r.law && I->functorCache.constLaw.get() == r.law) {
+		const Particle&          p1 = particles[I->getId1()];
+		const Particle&          p2 = particles[I->getId2()];
+		const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2,
+			                     scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero() };
+		ThreadSink sink { threadForce[thread].data(), threadTorque[thread].data(), I->getId1(), I->getId2(), I->isActive };
+		const ScGeom& geom   = static_cast<const ScGeom&>(*I->geom);
+		const auto    rotate = [&geom](Vector3r& v) { geom.rotate(v); };
+		keep = r.law->apply(geom, static_cast<PendularPhys&>(*I->phys), k, scene->dt, rotate, sink);
+	} else
+		keep = I->functorCache.constLaw->go(I->geom, I->phys, I.get());
+	if (!keep) scene->interactions->requestErase(I);
+	if (!I->isReal()) return;
+	for (size_t j = 0; j < r.callbacks.size(); ++j)
+		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), I.get());
+}
+
+void PendularLoop::flushForces()
+{
+	const size_t n = particles.size();
+	for (size_t id = 0; id < n; ++id) {
+		Vector3r f = threadForce[0][id], t = threadTorque[0][id];
+		for (size_t k = 1; k < threadForce.size(); ++k) {
+			f += threadForce[k][id];
+			t += threadTorque[k][id];
+		}
+		if (f != Vector3r::Zero()) scene->forces.addForce(Body::id_t(id), f);
+		if (t != Vector3r::Zero()) scene->forces.addTorque(Body::id_t(id), t);
+	}
+}
+
+} // namespace yade

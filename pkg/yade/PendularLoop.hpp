@@ -1,0 +1,61 @@
+// PendularLoop: YADE's InteractionLoop with a fused pass for the interactions of yade-capillary.
+#pragma once
+
+#include "Pendular.hpp"
+#include <core/InteractionLoop.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace yade {
+
+class PendularLoop : public InteractionLoop {
+public:
+	// What the fused pass needs of one body, gathered once per step into a contiguous array
+	// (instead of two shared_ptr hops to a State per interaction).
+	struct Particle {
+		Vector3r pos, vel, angVel;
+		Real     radius;
+		int      subdomain;
+		uint8_t  kind;
+	};
+	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
+
+	void action() override;
+	DECLARE_LOGGER;
+
+private:
+	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
+	bool resolve(Resolved&);
+	void gather();
+	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
+	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
+	void flushForces();
+
+	std::vector<Particle>              particles;
+	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
+	Matrix3r                           cellHsize = Matrix3r::Zero();
+
+public:
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(PendularLoop, InteractionLoop,
+		"The :yref:`InteractionLoop` of yade-capillary (yade_capillary.scene.engines uses it by default), built from the same "
+		"three functor lists. Sphere-sphere interactions of two :yref:`PendularMat` bodies whose functors the dispatchers resolve "
+		"to Ig2_Sphere_Sphere_ScGeom, Ip2_PendularMat_PendularMat_PendularPhys and Law2_ScGeom_PendularPhys_Bridge are computed in "
+		"one fused pass: geometry, contact law and capillary bridge, force and torque accumulation, without virtual calls, with the "
+		"bodies' positions and velocities gathered once per step. A potential interaction (bounding boxes overlap) costs one "
+		"distance check and becomes real at contact, where the bridge forms; a separated bridge updates only the normal and the "
+		"gap (ScGeom's shearInc, orthonormal_axis and twist_axis are updated in contact only, where the law uses them). "
+		"Interactions of PendularMat spheres with walls and facets get their geometry from their Ig2 functor and the same inline "
+		"law; every other interaction goes through the dispatchers exactly as in InteractionLoop. The numbers are those of "
+		"InteractionLoop with the same functors (the law is one function, Law2_ScGeom_PendularPhys_Bridge).",
+		((long, nFused, 0, Attr::readonly, "Interactions handled by the fused sphere-sphere pass in the last step [-] (real and potential)."))
+		((long, nDispatched, 0, Attr::readonly, "Interactions handled through the dispatchers in the last step [-] (walls, facets, other materials).")),
+		/*ctor*/,
+		/*py*/
+	);
+	// clang-format on
+};
+REGISTER_SERIALIZABLE(PendularLoop);
+
+} // namespace yade
