@@ -1,0 +1,76 @@
+# PendularLoop (the fused loop) against YADE's InteractionLoop with the same functors: wet packings
+# in boxes of walls and of facets, frictional and frictionless, 2000 steps each. Expected values:
+# the standard loop's own run (same scene, same time step).
+# - yade -j1: the fused pass does the operations of Ig2_Sphere_Sphere_ScGeom + the law in the
+#   same order and sums the forces of a body in the same order: positions, velocities, normal
+#   forces and liquid totals must be bit-identical.
+# - yade -j2 (ctest runs this file with -j1 and with -j2), loops on one and on two threads: a
+#   body's forces are summed in another order (per thread, then across threads; the collider's
+#   parallel insertion can also change the order of interactions), so round-off (1e-16 relative)
+#   grows over 2000 steps of collisions to at most 2.4e-12 of the scale (measured; the standard
+#   loop on two threads differs from itself on one as much). Bound: 1e-9 of the scale. Bridge
+#   counts must be equal and liquid volumes equal to 1e-12 relative.
+import math
+
+from yade import O
+from yade.wrapper import InteractionLoop
+
+from yade_capillary import scene, stress
+from yade_capillary.testing import Checker
+
+ck = Checker("test_loop")
+STEPS = 2000
+BOUND = 1e-9  # of the scale (RMIN, largest speed); measured: at most 2.4e-12 after 2000 steps
+RMIN = 0.5e-3
+
+
+def run(loop, box, friction, threads):
+    stress.box_packing(400, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.7, speed=0.1, friction=friction)
+    O.engines = scene.engines(gravity=(0, 0, -9.81), loop=loop)
+    O.dt = scene.stable_dt(0.1)
+    engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
+    engine.ompThreads = threads
+    O.run(STEPS, True)
+    law = stress.capillary_law()
+    state = [(tuple(b.state.pos), tuple(b.state.vel), tuple(b.state.angVel)) for b in O.bodies if b is not None and b.dynamic]
+    fn = {(i.id1, i.id2): tuple(i.phys.normalForce) for i in O.interactions}
+    return state, (law.nBridges, law.liquidVolume, law.liquidFormed, law.liquidReleased), fn, engine
+
+
+def scaled_difference(a, b):
+    """Largest difference of positions [in RMIN], velocities [in the largest speed of run a] and
+    angular velocities [in that speed / RMIN: frictionless spheres spin only from round-off
+    torques, so their own largest angular velocity is no scale]."""
+    vmax = max(max(abs(x) for x in s[1]) for s in a) or 1.0
+    wmax = vmax / RMIN
+    worst = 0.0
+    for sa, sb in zip(a, b):
+        for k, scale in ((0, RMIN), (1, vmax), (2, wmax)):
+            worst = max(worst, max(abs(x - y) for x, y in zip(sa[k], sb[k])) / scale)
+    return worst
+
+
+parallel = O.numThreads > 1
+for box in ("walls", "facets"):
+    for friction in (0.3, 0.0):
+        tag = "%s, friction %g" % (box, friction)
+        ref, ref_totals, ref_fn, _ = run("standard", box, friction, 1)
+        ck.true(ref_totals[2] > ref_totals[1] > 0, "%s: bridges formed %g and broken, liquid now %g m^3" % (tag, ref_totals[2], ref_totals[1]))
+        if not parallel:
+            one, one_totals, one_fn, loop = run("fused", box, friction, 1)
+            ck.true(loop.nFused > 0 and loop.nDispatched > 0, "%s: the fused pass (%d) and the dispatchers (%d, walls/facets) were both used"
+                    % (tag, loop.nFused, loop.nDispatched))
+            ck.true(one == ref, "%s: positions and velocities bit-identical to InteractionLoop (largest scaled difference %.3g)"
+                    % (tag, scaled_difference(ref, one)))
+            ck.true(one_totals == ref_totals, "%s: liquid totals identical %s vs %s" % (tag, one_totals, ref_totals))
+            ck.true(one_fn == ref_fn, "%s: the same interactions with identical normal forces" % tag)
+            continue
+        for threads in (1, 2):
+            state, totals, _, _ = run("fused", box, friction, threads)
+            diff = scaled_difference(ref, state)
+            print("%s: fused loop on %d thread(s): scaled difference %.3g from InteractionLoop on one" % (tag, threads, diff))
+            ck.true(diff <= BOUND, "%s, %d threads: scaled difference %.3g <= %g" % (tag, threads, diff, BOUND))
+            ck.true(totals[0] == ref_totals[0], "%s, %d threads: nBridges %d == %d" % (tag, threads, totals[0], ref_totals[0]))
+            for k, name in ((1, "liquidVolume"), (2, "liquidFormed"), (3, "liquidReleased")):
+                ck.close(totals[k], ref_totals[k], 1e-12, "%s, %d threads: %s" % (tag, threads, name), "one-thread InteractionLoop")
+ck.finish()
