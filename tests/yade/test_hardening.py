@@ -7,7 +7,7 @@ import tempfile
 
 from yade import O
 from yade.utils import sphere
-from yade.wrapper import PendularCheck, PendularMat
+from yade.wrapper import InteractionLoop, PendularCheck, PendularMat
 
 from yade_capillary import cases, kernels
 from yade_capillary.scene import engines
@@ -31,7 +31,7 @@ def pair(mat_a, mat_b, gap=-1e-9, fixed=True, eng=None):
 
 
 def law():
-    return [f for e in O.engines if e.__class__.__name__ == "InteractionLoop" for f in e.lawDispatcher.functors][0]
+    return [f for e in O.engines if isinstance(e, InteractionLoop) for f in e.lawDispatcher.functors][0]
 
 
 # 1. The Law2 totals survive O.save/O.load; the rupture after the load keeps them consistent.
