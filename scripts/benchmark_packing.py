@@ -1,18 +1,31 @@
 # Speed: one wet packing (16^3 touching spheres, ~11 500 bridges) with YADE's built-in capillary
-# law and with ours, same model, in one run. Prints ns per bridge-step of the interaction loop
-# and the ratio. A benchmark, not a test: timings on shared machines are noisy.
+# law (the baseline), its zero-force variant, our Law2 in YADE's InteractionLoop and our
+# PendularLoop (frictionless, and with friction), same model, in one run. Prints ns per
+# bridge-step of the interaction loop, ratios to the baseline, PendularLoop's phases and the
+# bytes per bridge. A benchmark, not a test: timings on shared machines are noisy.
 # Run:  build/yade-capillary -j1 -n -x scripts/benchmark_packing.py [n] [steps]
 import sys
+
+from yade import O
 
 from yade_capillary import benchmark
 
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 16
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 1000
-builtin, floor, ours = benchmark.run(n=n, steps=steps)
-print("%-62s %14s %12s %16s" % ("law", "interactions", "ns/bridge-step", "particle-steps/s"))
-for r in (builtin, floor, ours):
-    print("%-62s %14d %12.1f %16.3g" % (r["law"], r["interactions"], r["ns_per_bridge_step"], r["particle_steps_per_s"]))
-print("ratio ours / built-in (interaction loop per bridge-step): %.3f" % (ours["ns_per_bridge_step"] / builtin["ns_per_bridge_step"]))
-print("above the zero-force floor: ours %.1f ns, built-in %.1f ns" % (ours["ns_per_bridge_step"] - floor["ns_per_bridge_step"],
-                                                                    builtin["ns_per_bridge_step"] - floor["ns_per_bridge_step"]))
+results = benchmark.packing(n=n, steps=steps)
+base = results[0]
+print("(a) interaction pass, %d^3 wet packing, %d steps, %d thread(s)" % (n, steps, O.numThreads))
+print("%-72s %12s %14s %10s %16s" % ("loop and law", "interactions", "ns/bridge-step", "vs built-in", "particle-steps/s"))
+for r in results:
+    print("%-72s %12d %14.1f %10.3f %16.3g" % (r["law"], r["interactions"], r["ns_per_bridge_step"], r["ns_per_bridge_step"] / base["ns_per_bridge_step"],
+                                            r["particle_steps_per_s"]))
+for r in results:
+    if "pass" in r:
+        print("  %s: gather %.1f + pass %.1f + forces %.1f ns per bridge-step" % (r["law"], r["gather"], r["pass"], r["flush"]))
+mem = benchmark.memory()
+ours, theirs = mem["ScGeom"] + mem["PendularPhys"], mem["ScGeom"] + mem["ViscElCapPhys"]
+print("(c) bytes per bridge (sizeof; plus the Interaction, %d B, and shared_ptr control blocks, the same for both laws):" % mem["Interaction"])
+print("  ours ScGeom %d + PendularPhys %d = %d B; built-in ScGeom %d + ViscElCapPhys %d = %d B; ratio %.2f" %
+      (mem["ScGeom"], mem["PendularPhys"], ours, mem["ScGeom"], mem["ViscElCapPhys"], theirs, ours / theirs))
+print("  PendularLoop per body: gathered data %d B, forces %d B per thread" % (mem["particle"], mem["forces"]))
 sys.exit(0)

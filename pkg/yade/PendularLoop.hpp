@@ -22,6 +22,8 @@ public:
 	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
 
 	void action() override;
+	// sizeof of what an interaction and a body cost, for the memory benchmark.
+	boost::python::dict memory() const;
 	DECLARE_LOGGER;
 
 private:
@@ -50,9 +52,13 @@ public:
 		"law; every other interaction goes through the dispatchers exactly as in InteractionLoop. The numbers are those of "
 		"InteractionLoop with the same functors (the law is one function, Law2_ScGeom_PendularPhys_Bridge).",
 		((long, nFused, 0, Attr::readonly, "Interactions handled by the fused sphere-sphere pass in the last step [-] (real and potential)."))
-		((long, nDispatched, 0, Attr::readonly, "Interactions handled through the dispatchers in the last step [-] (walls, facets, other materials).")),
+		((long, nDispatched, 0, Attr::readonly, "Interactions handled through the dispatchers in the last step [-] (walls, facets, other materials)."))
+		((Real, gatherTime, 0, , "Wall time spent gathering the bodies' positions and velocities since this was last set to 0 [ns]."))
+		((Real, passTime, 0, , "Wall time spent in the pass over the interactions since this was last set to 0 [ns]."))
+		((Real, flushTime, 0, , "Wall time spent handing the summed forces to the force container since this was last set to 0 [ns].")),
 		/*ctor*/,
 		/*py*/
+		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison) and of the fused pass's per-body arrays (particle: gathered body data; forces: force and torque per thread).")
 	);
 	// clang-format on
 };

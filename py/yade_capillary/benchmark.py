@@ -1,10 +1,11 @@
-"""Side-by-side speed measurement of our Law2 and YADE's built-in capillary law (inside yade).
+"""Side-by-side speed measurements of our loop and law and YADE's built-in capillary law (inside yade).
 
-The scene: n^3 spheres on a touching simple-cubic lattice with random velocities, no gravity,
-every neighbour pair bridged at the first step (3 n^2 (n-1) bridges; 11 520 for n = 16). Both
-laws run the same scene with the same seed and time step in one process; the interaction-loop
+packing(): n^3 spheres on a touching simple-cubic lattice with random velocities, no gravity,
+every neighbour pair bridged at the first step (3 n^2 (n-1) bridges; 11 520 for n = 16). Every
+variant runs the same scene with the same seed and time step in one process; the interaction-loop
 time is read from YADE's engine timing and divided by the number of real interaction-steps.
-shear_cell() compares the two laws on the rotating shear cell (whole-run particle-steps per second).
+shear_cell() compares the laws on the rotating shear cell (whole-run particle-steps per second),
+memory() the bytes per bridge, gladkyy_probe() projects the cost of Gladkyy's full cell.
 """
 import os
 import random
@@ -35,13 +36,17 @@ def build(material, n, seed, vel):
 
 
 def measure(label, material, loop, n, steps, seed, vel, chunk=100):
-    """Run `steps` steps; return dict with ns per interaction-step of the interaction loop."""
+    """Run `steps` steps; return dict with ns per interaction-step of the interaction loop (and,
+    for PendularLoop, its phases: gathering the bodies, the pass, the force hand-over)."""
     build(material, n, seed, vel)
     O.engines = engines(loop=loop)
     O.step()  # first step: collider and interaction creation, not timed
     O.timingEnabled = True
     for e in O.engines:
         e.execTime = 0
+    phases = hasattr(O.engines[2], "passTime")
+    if phases:
+        O.engines[2].gatherTime = O.engines[2].passTime = O.engines[2].flushTime = 0
     intr_steps, t0 = 0, time.time()
     done = 0
     while done < steps:
@@ -52,8 +57,11 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100):
     wall = time.time() - t0
     loop_ns = O.engines[2].execTime
     O.timingEnabled = False
-    return {"law": label, "interactions": O.interactions.countReal(), "ns_per_bridge_step": loop_ns / intr_steps,
-            "particle_steps_per_s": len(O.bodies) * steps / wall, "wall_s": wall}
+    out = {"law": label, "interactions": O.interactions.countReal(), "ns_per_bridge_step": loop_ns / intr_steps,
+           "particle_steps_per_s": len(O.bodies) * steps / wall, "wall_s": wall}
+    if phases:
+        out.update({k: getattr(O.engines[2], k + "Time") / intr_steps for k in ("gather", "pass", "flush")})
+    return out
 
 
 def builtin_run(capillar_type, n, steps, seed, vel):
@@ -65,33 +73,48 @@ def builtin_run(capillar_type, n, steps, seed, vel):
                                    [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
 
 
-def run(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
-    """Measure YADE's built-in law (baseline), its zero-force variant, then ours, on identical scenes.
+def ours_run(model, loop, friction, n, steps, seed, vel):
+    """Our law on the benchmark scene, in `loop` ("standard": YADE's InteractionLoop, "fused":
+    PendularLoop); friction: contact friction angle [rad] (0: no tangential spring)."""
+    return measure("yade-capillary %s, %s, friction %g" % (model, "PendularLoop" if loop == "fused" else "Law2 in InteractionLoop", friction),
+                   PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model),
+                   loop, n, steps, seed, vel)
+
+
+def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
+    """Measure, on identical scenes: YADE's built-in law (the baseline), its zero-force variant, our
+    Law2 in YADE's InteractionLoop, and PendularLoop frictionless and with friction 0.5 rad.
 
     The zero-force variant (CapillarType "None": the built-in law with the same bookkeeping and a
-    capillary force of 0) is the floor set by YADE's interaction loop, geometry and dispatch,
-    which no Law2 functor can go below. Each is measured `repeats` times, interleaved, and the fastest repetition is kept (noise on a
-    shared machine only ever adds time).
+    capillary force of 0) is the floor of YADE's interaction loop, geometry and dispatch, which no
+    Law2 functor in that loop can go below. Each is measured `repeats` times, interleaved, and the
+    fastest repetition is kept (noise on a shared machine only ever adds time). Returns the list
+    of result dicts, baseline first.
     """
-    runs = [[], [], []]
+    variants = [lambda: builtin_run(builtin_model, n, steps, seed, vel), lambda: builtin_run("None", n, steps, seed, vel),
+                lambda: ours_run(model, "standard", 0.0, n, steps, seed, vel), lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel),
+                lambda: ours_run(model, "fused", 0.5, n, steps, seed, vel)]
+    runs = [[] for _ in variants]
     for _ in range(repeats):
-        runs[0].append(builtin_run(builtin_model, n, steps, seed, vel))
-        runs[1].append(builtin_run("None", n, steps, seed, vel))
-        runs[2].append(ours_run(model, n, steps, seed, vel))
+        for r, v in zip(runs, variants):
+            r.append(v())
     return [min(r, key=lambda x: x["ns_per_bridge_step"]) for r in runs]
 
 
-def ours_run(model, n, steps, seed, vel):
-    """Our law on the benchmark scene."""
-    return measure("yade-capillary Law2_ScGeom_PendularPhys_Bridge (%s)" % model,
-                   PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=0, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model),
-                   None, n, steps, seed, vel)
+def memory():
+    """Bytes per bridge of our law and of YADE's built-in one (sizeof; each of Interaction, geometry
+    and physics is one heap object held by a shared_ptr, identical for both laws except the physics)
+    and the per-body arrays of PendularLoop."""
+    from yade.wrapper import PendularLoop
+
+    return dict(PendularLoop().memory())
 
 
 def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
-    """The prepared shear cell rotating, with our law and with YADE's built-in law (willett_full vs
-    Willett_numeric, same positions, same time step), in one run: particle-steps per second of
-    each (fastest of `repeats` interleaved runs). Returns (builtin, ours) dicts."""
+    """The prepared shear cell rotating, with YADE's built-in law (Willett_numeric) and with ours
+    (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
+    in one run: particle-steps per second of each (fastest of `repeats` interleaved runs; threads
+    as given to yade by -j). Returns (builtin, ours standard, ours fused) dicts."""
     import json
     import math
     import tempfile
@@ -124,8 +147,9 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
                                    gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
     loop = lambda: InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
                                    [Law2_ScGeom_ViscElCapPhys_Basic()])
-    runs = [[], []]
+    runs = [[], [], []]
     for _ in range(repeats):
         runs[0].append(timed(builtin_mat(), loop()))
-        runs[1].append(timed(ours_mat(), None))
+        runs[1].append(timed(ours_mat(), "standard"))
+        runs[2].append(timed(ours_mat(), "fused"))
     return [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs]
