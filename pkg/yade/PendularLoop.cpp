@@ -102,9 +102,11 @@ void PendularLoop::gather()
 	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
 	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
 	for (size_t id = 0; id < n; ++id) {
+		// Two levels: the Body, then, once it is cached, its State and Shape.
+		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
 		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
 			const Body& ahead = *bodies[id + prefetchAhead];
-			__builtin_prefetch(ahead.state.get());
+			prefetchObject(ahead.state.get());
 			__builtin_prefetch(ahead.shape.get());
 		}
 		Particle&   p = particles[id];
@@ -165,45 +167,55 @@ void PendularLoop::action()
 
 	// As InteractionLoop: with a collider that does not erase interactions itself, the potential
 	// interactions it did not see in this step are skipped.
-	const bool removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
+	removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
 	const int        subdomain    = scene->subdomain;
 	long             fused = 0, dispatchedCount = 0;
+	slots.resize(size);
+	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
 	// Static schedule: each thread gets the same interactions in every run, so a run with a given
 	// number of threads is reproducible.
 #ifdef YADE_OPENMP
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : fused, dispatchedCount)
 #endif
 	for (long i = 0; i < size; ++i) {
-		if (i + 2 * prefetchAhead < size) prefetchObject(interactions[i + 2 * prefetchAhead].get());
+		// Two levels: the Interaction (unless a potential one seen before), then, once it is cached,
+		// the geometry and physics of a real one.
+		if (i + 2 * prefetchAhead < size) {
+			const Slot& ahead = slots[i + 2 * prefetchAhead];
+			const auto& J     = interactions[i + 2 * prefetchAhead];
+			if (!(ahead.potential && ahead.same(J))) prefetchObject(J.get());
+		}
 		if (i + prefetchAhead < size) {
-			const Interaction& J = *interactions[i + prefetchAhead];
-			if (J.geom) prefetchObject(static_cast<const ScGeom*>(J.geom.get()));
-			if (J.phys) prefetchObject(static_cast<const PendularPhys*>(J.phys.get()));
+			const Slot& ahead = slots[i + prefetchAhead];
+			const auto& J     = interactions[i + prefetchAhead];
+			if (!ahead.potential && ahead.same(J)) {
+				if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
+				if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
+			}
 		}
-		const shared_ptr<Interaction>& I = interactions[i];
-		if (removeUnseen && !I->isReal() && I->iterLastSeen < scene->iter) continue;
-		const Body::id_t id1 = I->getId1(), id2 = I->getId2();
-		const Particle*  p1 = size_t(id1) < particles.size() ? &particles[id1] : nullptr;
-		const Particle*  p2 = size_t(id2) < particles.size() ? &particles[id2] : nullptr;
-		if (!p1 || !p2 || p1->kind == missing || p2->kind == missing) {
-			scene->interactions->requestErase(I);
-			continue;
+		const shared_ptr<Interaction>& I    = interactions[i];
+		Slot&                          slot = slots[i];
+		// A potential interaction of two PendularMat spheres seen in an earlier step (same object,
+		// so the same ids; it became real only in this loop, which updates the slot): one distance
+		// check on the gathered data, without reading the Interaction.
+		if (skipApart && slot.potential && slot.same(I)) {
+			const Particle& q1 = particles[slot.id1];
+			const Particle& q2 = particles[slot.id2];
+			if (q1.kind == pendularSphere && q2.kind == pendularSphere && (subdomain == q1.subdomain || subdomain == q2.subdomain)) {
+				const Real sumR = q1.radius + q2.radius;
+				if ((q2.pos - q1.pos).squaredNorm() > sumR * sumR) {
+					++fused;
+					continue;
+				}
+			}
 		}
-		// yade.mpy: an interaction of two bodies of other subdomains is not this rank's.
-		if (subdomain != p1->subdomain && subdomain != p2->subdomain) {
-			scene->interactions->requestErase(I);
-			continue;
-		}
-		if (p1->kind == clump || p2->kind == clump) continue;
-		if (r.fused && p1->kind == pendularSphere && p2->kind == pendularSphere) {
-			++fused;
-			sphereSphere(I, r, threadNum());
-		} else {
-			++dispatchedCount;
-			dispatched(I, r, threadNum());
-		}
+		step(I, r, fused, dispatchedCount);
+		slot.interaction = I;
+		slot.id1         = I->getId1();
+		slot.id2         = I->getId2();
+		slot.potential   = !I->isReal();
 	}
 	nFused        = fused;
 	nDispatched   = dispatchedCount;
@@ -224,6 +236,31 @@ boost::python::dict PendularLoop::memory() const
 	d["particle"]      = sizeof(Particle);
 	d["forces"]        = 2 * sizeof(Vector3r);
 	return d;
+}
+
+void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount)
+{
+	const Body::id_t id1 = I->getId1(), id2 = I->getId2();
+	if (removeUnseen && !I->isReal() && I->iterLastSeen < scene->iter) return;
+	const Particle* p1 = size_t(id1) < particles.size() ? &particles[id1] : nullptr;
+	const Particle* p2 = size_t(id2) < particles.size() ? &particles[id2] : nullptr;
+	if (!p1 || !p2 || p1->kind == missing || p2->kind == missing) {
+		scene->interactions->requestErase(I);
+		return;
+	}
+	// yade.mpy: an interaction of two bodies of other subdomains is not this rank's.
+	if (scene->subdomain != p1->subdomain && scene->subdomain != p2->subdomain) {
+		scene->interactions->requestErase(I);
+		return;
+	}
+	if (p1->kind == clump || p2->kind == clump) return;
+	if (r.fused && p1->kind == pendularSphere && p2->kind == pendularSphere) {
+		++fused;
+		sphereSphere(I, r, threadNum());
+	} else {
+		++dispatchedCount;
+		dispatched(I, r, threadNum());
+	}
 }
 
 void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread)

@@ -4,6 +4,7 @@
 #include "Pendular.hpp"
 #include <core/InteractionLoop.hpp>
 
+#include <boost/weak_ptr.hpp>
 #include <cstdint>
 #include <vector>
 
@@ -30,10 +31,22 @@ private:
 	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
 	bool resolve(Resolved&);
 	void gather();
+	void step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void flushForces();
 
+	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
+	// whether it was potential. Held by a weak_ptr and compared by owner (control block), not by
+	// address: a new interaction allocated where an erased one was is still another owner.
+	struct Slot {
+		boost::weak_ptr<Interaction> interaction;
+		Body::id_t                   id1 = 0, id2 = 0;
+		bool                         potential = false;
+		bool same(const shared_ptr<Interaction>& I) const { return !interaction.owner_before(I) && !I.owner_before(interaction); }
+	};
+	std::vector<Slot>                  slots;
+	bool                               removeUnseen = false;
 	std::vector<Particle>              particles;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	Matrix3r                           cellHsize = Matrix3r::Zero();

@@ -153,3 +153,41 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
         runs[1].append(timed(ours_mat(), "standard"))
         runs[2].append(timed(ours_mat(), "fused"))
     return [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs]
+
+
+def engine_times(steps):
+    """ns per step of each engine of O.engines over the last `steps` steps (O.timingEnabled must have
+    been on, with execTime reset before them)."""
+    return {"%s%s" % (e.__class__.__name__, "(%s)" % e.label if e.label else ""): e.execTime / steps for e in O.engines}
+
+
+def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0):
+    """Speed probe of a Gladkyy-size cell (shearcell.GLADKYY_SIZE: about 170 000 flowing spheres plus
+    the rough walls), rotating. The flowing spheres are built touching (ring lattice of 2 R, filled
+    to H), so that contacts and bridges exist from the first steps, as in a settled cell; 100 steps
+    untimed, then `steps` timed. Returns a dict: numbers of spheres and interactions, wall time per
+    step, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
+    step, and ns per step of each engine (where the time goes)."""
+    import json
+
+    from . import shearcell
+
+    cfg = shearcell.GLADKYY_SIZE
+    ids = shearcell.build(cfg, case, spacing=2.0, fill=1.0)
+    info = {"config": "gladkyy_size", "case": case, "flowing": ids["flowing"], "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg}
+    O.tags["shearcell"] = json.dumps(info)
+    O.engines = shearcell.run_engines(info, loop)
+    O.dt = cfg["dt_over_tc"] * cfg["tc"]
+    O.run(100, True)
+    O.timingEnabled = True
+    for e in O.engines:
+        e.execTime = 0
+    t0 = time.time()
+    O.run(steps, True)
+    wall = time.time() - t0
+    O.timingEnabled = False
+    per_step = wall / steps
+    return {"spheres": len(O.bodies), "flowing": len(ids["flowing"]), "real_interactions": O.interactions.countReal(),
+            "interactions": len(O.interactions), "s_per_step": per_step, "particle_steps_per_s": len(ids["flowing"]) / per_step,
+            "projected_h": per_step * run_s / O.dt / 3600, "run_s": run_s, "dt": O.dt, "threads": O.numThreads,
+            "engines_ns_per_step": engine_times(steps)}

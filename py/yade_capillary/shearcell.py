@@ -37,7 +37,10 @@ VALIDATION_2S = dict(VALIDATION, run_s=2.0, snapshots=10, snapshot_dt_s=0.1)
 # last 3.5 s of 5 s).
 VALIDATION_4S = dict(VALIDATION, run_s=2.0, snapshots=8, snapshot_dt_s=0.25)
 VALIDATION_5S = dict(VALIDATION, run_s=3.0, snapshots=12, snapshot_dt_s=0.25)
-CONFIGS = {"validation": VALIDATION, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
+# Gladkyy's cell size: "nearly 200 000" spheres of R = 2.381 mm, about 168 000 flowing, i.e. the
+# validation cell (about 15 000 flowing) enlarged 2.2 times linearly; for speed probes.
+GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["Ri"], Rs=2.2 * VALIDATION["Rs"], H=2.2 * VALIDATION["H"])
+CONFIGS = {"validation": VALIDATION, "gladkyy_size": GLADKYY_SIZE, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
            "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "ci": CI}
 # Configurations that start from the final state of another one's run of the same case.
 CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s"}
@@ -86,28 +89,24 @@ def wall_positions(cfg):
     return {"static": static, "rotating": rotating}
 
 
-def prepare(config, case, path, seed=None, log=print):
-    """Build the cell, fill it to about H, settle under gravity, O.save to path; returns info dict.
-
-    seed: overrides the configuration's seed of the random filling (for seed-to-seed scatter)."""
+def build(cfg, case, spacing=2.2, fill=1.4):
+    """O.reset(), then the cell of configuration dict `cfg` with the liquid of `case`: wall spheres and
+    flowing spheres on a ring lattice of `spacing` radii (slightly jittered) filling the annulus to
+    fill H. Returns {'flowing', 'static', 'rotating'} lists of ids."""
     from yade import O
     from yade.utils import sphere
 
-    from .scene import engines
-
-    cfg = dict(CONFIGS[config], **({} if seed is None else {"seed": seed}))
     O.reset()
     mat = O.materials.append(_material(cfg, case))
     walls = wall_positions(cfg)
     ids = {}
     for kind, pts in walls.items():
         ids[kind] = [O.bodies.append(sphere(p, cfg["R"], material=mat, fixed=True)) for p in pts]
-    # Flowing spheres on a loose hexagonal-ish lattice filling the annulus to 1.4 H (settles to ~H).
     rng = random.Random(cfg["seed"])
-    R, d = cfg["R"], 2.2 * cfg["R"]
+    R, d = cfg["R"], spacing * cfg["R"]
     flowing = []
     z = 1.5 * R
-    while z < 1.4 * cfg["H"]:
+    while z < fill * cfg["H"]:
         r = cfg["Ri"] + 1.2 * R
         while r < cfg["Ro"] - 1.2 * R:
             for p in _ring(r, z, d):
@@ -115,6 +114,22 @@ def prepare(config, case, path, seed=None, log=print):
                 flowing.append(O.bodies.append(sphere(q, R, material=mat)))
             r += d
         z += d
+    ids["flowing"] = flowing
+    return ids
+
+
+def prepare(config, case, path, seed=None, log=print):
+    """Build the cell, fill it to about H, settle under gravity, O.save to path; returns info dict.
+
+    seed: overrides the configuration's seed of the random filling (for seed-to-seed scatter)."""
+    from yade import O
+
+    from .scene import engines
+
+    cfg = dict(CONFIGS[config], **({} if seed is None else {"seed": seed}))
+    # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H).
+    ids = build(cfg, case)
+    flowing = ids["flowing"]
     O.engines = engines(gravity=(0, 0, -9.81), damping=0.3)
     O.dt = cfg["dt_over_tc"] * cfg["tc"]
     steps = int(cfg["settle_s"] / O.dt)

@@ -1,0 +1,19 @@
+# Speed probe of a Gladkyy-size wet shear cell (about 170 000 flowing spheres, R = 2.381 mm, the
+# validation cell enlarged 2.2 times): 1000 timed steps with PendularLoop, and the projected wall
+# time of Gladkyy's 5 s of rotation at the configuration's time step (tc/20). A benchmark, not a
+# test. Run with the threads to project for, e.g.
+#   build/yade-capillary -j2 -n -x scripts/benchmark_gladkyy_probe.py [steps]
+import sys
+
+from yade_capillary import benchmark
+
+steps = int(sys.argv[1]) if len(sys.argv) > 1 else 1000
+r = benchmark.gladkyy_probe(steps)
+print("(d) Gladkyy-size cell: %d spheres (%d flowing), %d real of %d interactions, %d thread(s)"
+      % (r["spheres"], r["flowing"], r["real_interactions"], r["interactions"], r["threads"]))
+print("    %.3f s per step, %.3g particle-steps/s; %g s of rotation at dt = %.3g s: projected %.1f h"
+      % (r["s_per_step"], r["particle_steps_per_s"], r["run_s"], r["dt"], r["projected_h"]))
+total = sum(r["engines_ns_per_step"].values())
+for name, ns in sorted(r["engines_ns_per_step"].items(), key=lambda kv: -kv[1]):
+    print("    %-40s %8.1f ms per step (%4.1f %%)" % (name, ns / 1e6, 100 * ns / total))
+sys.exit(0)
