@@ -2,6 +2,8 @@
 
 #include <core/InteractionLoop.hpp>
 
+#include <mpi.h>
+
 #include <boost/python/exception_translator.hpp>
 #include <boost/python/raw_function.hpp>
 #include <boost/weak_ptr.hpp>
@@ -178,6 +180,21 @@ void PendularCheck::action()
 		                     "stable time step");
 	}
 	if (!message.empty()) {
+		// Under mpiexec (yade.mpy), the other ranks wait for this one inside the step: an exception
+		// here would leave them, and the master's O.run, blocked for ever. End the whole run instead,
+		// with the message.
+		int initialized = 0, finalized = 0, ranks = 1, rank = 0;
+		MPI_Initialized(&initialized);
+		MPI_Finalized(&finalized);
+		if (initialized && !finalized) {
+			MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+			MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+		}
+		if (ranks > 1) {
+			LOG_ERROR("MPI rank " << rank << " of " << ranks << ": " << message << "; aborting all ranks (MPI_Abort)");
+			std::cerr << "yade-capillary, MPI rank " << rank << ": ValueError: " << message << std::endl;
+			MPI_Abort(MPI_COMM_WORLD, 1);
+		}
 		// O.step() runs the step in the Python thread, which holds the GIL and gets the exception
 		// itself; YADE's simulation thread does not hold it, and its wait() may miss the error.
 		remember(message, PyGILState_Check() ? nullptr : scene);
@@ -520,12 +537,15 @@ namespace {
 bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
 {
 	const auto      id1 = I->getId1(), id2 = I->getId2();
-	const State&    de1 = *Body::byId(id1, scene)->state;
-	const State&    de2 = *Body::byId(id2, scene)->state;
+	const Body&     b1  = *Body::byId(id1, scene);
+	const Body&     b2  = *Body::byId(id2, scene);
+	const State&    de1 = *b1.state;
+	const State&    de2 = *b2.state;
 	const bool      periodic = scene->isPeriodic;
 	const PendularKinematics k { de1.pos, de1.vel, de1.angVel, de2.pos, de2.vel, de2.angVel,
 		                     periodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero(),
-		                     periodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero() };
+		                     periodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero(),
+		                     pendularOwner(scene->subdomain, b1.subdomain, b2.subdomain) };
 	SceneSink       sink { scene, id1, id2, I->isActive };
 	const ScGeom&   geom   = static_cast<const ScGeom&>(*ig);
 	const auto      rotate = [&geom](Vector3r& v) { geom.rotate(v); };

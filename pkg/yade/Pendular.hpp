@@ -196,11 +196,19 @@ public:
 REGISTER_SERIALIZABLE(PendularCheck);
 
 // Positions and velocities of the two bodies of an interaction, as the contact law reads them;
-// shift2 and shiftVel move body 2 to its periodic image (zero without periodic cell).
+// shift2 and shiftVel move body 2 to its periodic image (zero without periodic cell). owned: this
+// scene counts the bridge in the law's totals (see pendularOwner).
 struct PendularKinematics {
 	const Vector3r &pos1, &vel1, &angVel1, &pos2, &vel2, &angVel2;
 	Vector3r        shift2, shiftVel;
+	bool            owned;
 };
+
+// yade.mpy computes an interaction between bodies of two subdomains on both ranks: its bridge is
+// counted in the totals (nBridges, liquidVolume, ...) only by the rank of the larger subdomain
+// number, so that the sum over ranks counts every bridge once (the master, subdomain 0, keeps the
+// walls; a wall-sphere pair belongs to the sphere's rank). Without MPI every subdomain is 0.
+inline bool pendularOwner(int sceneSubdomain, int subdomain1, int subdomain2) { return sceneSubdomain == math::max(subdomain1, subdomain2); }
 
 class Law2_ScGeom_PendularPhys_Bridge : public LawFunctor {
 public:
@@ -222,7 +230,7 @@ public:
 		"with a detection factor > 1): no force, and the interaction is reset (returns false), so that it is removed once "
 		"the bounding boxes part and made again at contact; a real interaction keeps its geometry until the law ends it, so "
 		"no enlarged detection range is needed for the bridge.",
-		((OpenMPAccumulator<int>, nBridges, , Attr::readonly, "Number of liquid bridges that exist now [-]. Saved by O.save."))
+		((OpenMPAccumulator<int>, nBridges, , Attr::readonly, "Number of liquid bridges that exist now [-]. Saved by O.save. Under yade.mpy, the bridges of this rank (a bridge between two subdomains belongs to the larger subdomain number); yade_capillary.mpi.liquid_totals() sums over ranks."))
 		((OpenMPAccumulator<Real>, liquidVolume, , Attr::readonly, "Liquid volume in the bridges that exist now [m^3]. Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidFormed, , Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014). Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidReleased, , Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume. Saved by O.save.")),
@@ -249,9 +257,11 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		if (gap > phys.bridge.rupture) {
 			phys.active = false;
 			phys.Fcap   = 0;
-			nBridges -= 1;
-			liquidVolume -= phys.Vb;
-			liquidReleased += phys.Vb;
+			if (k.owned) {
+				nBridges -= 1;
+				liquidVolume -= phys.Vb;
+				liquidReleased += phys.Vb;
+			}
 			return false;
 		}
 		// A separated bridge needs only the gap and the normal: no tangential work, no torque.
@@ -266,9 +276,11 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
 	if (phys.wet && !phys.active) {
 		phys.active = true;
-		nBridges += 1;
-		liquidVolume += phys.Vb;
-		liquidFormed += phys.Vb;
+		if (k.owned) {
+			nBridges += 1;
+			liquidVolume += phys.Vb;
+			liquidFormed += phys.Vb;
+		}
 	}
 	const Vector3r c1x    = geom.contactPoint - k.pos1;
 	const Vector3r c2x    = geom.contactPoint - k.pos2 - k.shift2;

@@ -327,7 +327,8 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 		r.ip2->go(b1->material, b2->material, I);
 	}
 	if (!wasReal) I->iterMadeReal = scene->iter;
-	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel };
+	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
+		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain) };
 	ThreadSink sink { threadForce[thread].data(), threadTorque[thread].data(), I->getId1(), I->getId2(), I->isActive };
 	if (!r.law->apply(geom, static_cast<PendularPhys&>(*I->phys), k, scene->dt, rotate, sink)) {
 		scene->interactions->requestErase(I);
@@ -385,7 +386,8 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 		const Particle&          p1 = particles[I->getId1()];
 		const Particle&          p2 = particles[I->getId2()];
 		const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2,
-			                     scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero() };
+			                     scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero(),
+			                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain) };
 		ThreadSink sink { threadForce[thread].data(), threadTorque[thread].data(), I->getId1(), I->getId2(), I->isActive };
 		const ScGeom& geom   = static_cast<const ScGeom&>(*I->geom);
 		const auto    rotate = [&geom](Vector3r& v) { geom.rotate(v); };
