@@ -3,7 +3,9 @@
 #   ./run.sh validate   two-sphere validation (Gladkyy 2014, Table 1): summary table + results/two_sphere/
 #   ./run.sh test       all tests (kernel unit tests, Python tests, in-YADE tests); further arguments
 #                       go to ctest, e.g. ./run.sh test -L fast (all but the slow shear-cell regression)
-#   ./run.sh bench      speed benchmark against YADE's built-in capillary law
+#   ./run.sh bench      speed benchmarks against YADE's built-in capillary law (about 20 min): the
+#                       interaction pass and bytes per bridge (packing), the ci and validation
+#                       shear cells on one and two threads, a Gladkyy-size cell probe on two
 #   ./run.sh setup      only set up and build
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")" && pwd)
@@ -18,6 +20,13 @@ cd "$ROOT"
 case "$cmd" in
   validate) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/two_sphere.py results/two_sphere ;;
   test) shift; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" "$@" ;;
-  bench) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/benchmark_packing.py ;;
+  bench)
+    Y="$BUILD_DIR/yade-capillary"
+    mkdir -p "$BUILD_DIR/bench"
+    "$Y" -j1 -n -x scripts/benchmark_packing.py
+    for config in ci validation_probe; do
+      for j in 1 2; do "$Y" -j$j -n -x scripts/benchmark_shear_cell.py $config 1000 "$BUILD_DIR/bench/$config.yade.gz"; done
+    done
+    "$Y" -j2 -n -x scripts/benchmark_gladkyy_probe.py ;;
   setup) ;;
 esac

@@ -110,19 +110,22 @@ def memory():
     return dict(PendularLoop().memory())
 
 
-def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2):
+def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None):
     """The prepared shear cell rotating, with YADE's built-in law (Willett_numeric) and with ours
     (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
     in one run: particle-steps per second of each (fastest of `repeats` interleaved runs; threads
-    as given to yade by -j). Returns (builtin, ours standard, ours fused) dicts."""
+    as given to yade by -j). cache: file of the prepared cell, prepared there if missing (so that
+    runs with other thread counts start from the same cell). Returns (builtin, ours standard, ours
+    fused) dicts."""
     import json
     import math
     import tempfile
 
     from . import shearcell
 
-    path = os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
-    shearcell.prepare(config, case, path, log=lambda *a: None)
+    path = cache or os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
+    if not os.path.exists(path):
+        shearcell.prepare(config, case, path, log=lambda *a: None)
     O.load(path)
     info = json.loads(O.tags["shearcell"])
     cfg, liquid = info["cfg"], shearcell.CASES[case]
@@ -164,7 +167,7 @@ def engine_times(steps):
 def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0):
     """Speed probe of a Gladkyy-size cell (shearcell.GLADKYY_SIZE: about 170 000 flowing spheres plus
     the rough walls), rotating. The flowing spheres are built touching (ring lattice of 2 R, filled
-    to H), so that contacts and bridges exist from the first steps, as in a settled cell; 100 steps
+    to 1.2 H: about 166 000 flowing spheres), so that contacts and bridges exist from the first steps, as in a settled cell; 100 steps
     untimed, then `steps` timed. Returns a dict: numbers of spheres and interactions, wall time per
     step, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
     step, and ns per step of each engine (where the time goes)."""
@@ -173,7 +176,7 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0):
     from . import shearcell
 
     cfg = shearcell.GLADKYY_SIZE
-    ids = shearcell.build(cfg, case, spacing=2.0, fill=1.0)
+    ids = shearcell.build(cfg, case, spacing=2.0, fill=1.2)
     info = {"config": "gladkyy_size", "case": case, "flowing": ids["flowing"], "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg}
     O.tags["shearcell"] = json.dumps(info)
     O.engines = shearcell.run_engines(info, loop)
