@@ -94,13 +94,17 @@ bool PendularLoop::resolve(Resolved& r)
 	return r.fused;
 }
 
-void PendularLoop::gather()
+void PendularLoop::gather(int threads)
 {
 	const auto&  bodies = *scene->bodies;
 	const size_t n      = bodies.size();
 	particles.resize(n);
+	near.resize(n);
 	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
 	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
+#ifdef YADE_OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
 	for (size_t id = 0; id < n; ++id) {
 		// Two levels: the Body, then, once it is cached, its State and Shape.
 		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
@@ -111,6 +115,7 @@ void PendularLoop::gather()
 		}
 		Particle&   p = particles[id];
 		const auto& b = bodies[id];
+		near[id]      = Near { Vector3r::Zero(), 0 };
 		if (!b) {
 			p.kind = missing;
 			continue;
@@ -132,6 +137,7 @@ void PendularLoop::gather()
 			} else
 				p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 		}
+		if (p.kind == pendularSphere) near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius : -p.radius };
 	}
 }
 
@@ -151,15 +157,18 @@ void PendularLoop::action()
 	using Clock     = std::chrono::steady_clock;
 	const auto ns   = [](Clock::time_point a, Clock::time_point b) { return Real(std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count()); };
 	const auto t0   = Clock::now();
-	gather();
 #ifdef YADE_OPENMP
 	const int threads = ompThreads > 0 ? math::min(ompThreads, omp_get_max_threads()) : omp_get_max_threads();
 #else
 	const int threads = 1;
 #endif
+	gather(threads);
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
-	for (int t = 0; t < threads; ++t) {
+#ifdef YADE_OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
+	for (int t = 0; t < threads; ++t) { // each thread zeroes its own arrays
 		threadForce[t].assign(particles.size(), Vector3r::Zero());
 		threadTorque[t].assign(particles.size(), Vector3r::Zero());
 	}
@@ -201,10 +210,10 @@ void PendularLoop::action()
 		// so the same ids; it became real only in this loop, which updates the slot): one distance
 		// check on the gathered data, without reading the Interaction.
 		if (skipApart && slot.potential && slot.same(I)) {
-			const Particle& q1 = particles[slot.id1];
-			const Particle& q2 = particles[slot.id2];
-			if (q1.kind == pendularSphere && q2.kind == pendularSphere && (subdomain == q1.subdomain || subdomain == q2.subdomain)) {
-				const Real sumR = q1.radius + q2.radius;
+			const Near& q1 = near[slot.id1];
+			const Near& q2 = near[slot.id2];
+			if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
+				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
 				if ((q2.pos - q1.pos).squaredNorm() > sumR * sumR) {
 					++fused;
 					continue;
@@ -220,7 +229,7 @@ void PendularLoop::action()
 	nFused        = fused;
 	nDispatched   = dispatchedCount;
 	const auto t2 = Clock::now();
-	flushForces();
+	flushForces(threads);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
@@ -400,10 +409,15 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), I.get());
 }
 
-void PendularLoop::flushForces()
+void PendularLoop::flushForces(int threads)
 {
-	const size_t n = particles.size();
-	for (size_t id = 0; id < n; ++id) {
+	// In parallel: a body's sum goes into the force container's buffer of the thread that adds it,
+	// the other threads' buffers hold nothing for it.
+	const long n = long(particles.size());
+#ifdef YADE_OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
+	for (long id = 0; id < n; ++id) {
 		Vector3r f = threadForce[0][id], t = threadTorque[0][id];
 		for (size_t k = 1; k < threadForce.size(); ++k) {
 			f += threadForce[k][id];

@@ -30,11 +30,11 @@ public:
 private:
 	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
 	bool resolve(Resolved&);
-	void gather();
+	void gather(int threads);
 	void step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
-	void flushForces();
+	void flushForces(int threads);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
 	// whether it was potential. Held by a weak_ptr and compared by owner (control block), not by
@@ -48,6 +48,14 @@ private:
 	std::vector<Slot>                  slots;
 	bool                               removeUnseen = false;
 	std::vector<Particle>              particles;
+	// The part of a Particle that the check of a potential pair reads, 32 B (two per cache line):
+	// the centre and the radius, signed: > 0 a PendularMat sphere of this subdomain, < 0 (minus the
+	// radius) one of another subdomain, 0 any other body.
+	struct Near {
+		Vector3r pos;
+		Real     radius;
+	};
+	std::vector<Near>                  near;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	Matrix3r                           cellHsize = Matrix3r::Zero();
 

@@ -1,6 +1,7 @@
 # PendularLoop (the fused loop) against YADE's InteractionLoop with the same functors: wet packings
-# in boxes of walls and of facets, frictional and frictionless, 2000 steps each. Expected values:
-# the standard loop's own run (same scene, same time step).
+# in boxes of walls and of facets, frictional and frictionless, 2000 steps each; next to the box of
+# walls, a dry FrictMat packing with YADE's Cundall-Strack law, which PendularLoop leaves to the
+# dispatchers. Expected values: the standard loop's own run (same scene, same time step).
 # - yade -j1: the fused pass does the operations of Ig2_Sphere_Sphere_ScGeom + the law in the
 #   same order and sums the forces of a body in the same order: positions, velocities, normal
 #   forces and liquid totals must be bit-identical.
@@ -13,7 +14,8 @@
 import math
 
 from yade import O
-from yade.wrapper import InteractionLoop
+from yade.utils import sphere
+from yade.wrapper import FrictMat, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack
 
 from yade_capillary import scene, stress
 from yade_capillary.testing import Checker
@@ -24,16 +26,35 @@ BOUND = 1e-9  # of the scale (RMIN, largest speed); measured: at most 2.4e-12 af
 RMIN = 0.5e-3
 
 
+def dry_neighbours():
+    """Dry FrictMat spheres beside the wet box (x < -3 RMIN, z < -9 RMIN: away from its walls, which are
+    infinite planes): two layers falling on a floor of fixed spheres. PendularLoop leaves their
+    interactions to YADE's dispatchers and the Cundall-Strack law."""
+    mat = O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.4, density=2500))
+    for i in range(4):
+        for j in range(4):
+            x, y = -9 * RMIN + 2 * RMIN * i, 2 * RMIN + 2 * RMIN * j
+            O.bodies.append(sphere((x, y, -15 * RMIN), RMIN, material=mat, fixed=True))
+            for k, z in enumerate((-13 * RMIN, -10.8 * RMIN)):
+                O.bodies.append(sphere((x + 0.1 * RMIN * (j - 1.5), y + 0.1 * RMIN * (i - 1.5), z - 0.05 * RMIN * k), RMIN, material=mat))
+
+
 def run(loop, box, friction, threads):
     stress.box_packing(400, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.7, speed=0.1, friction=friction)
-    O.engines = scene.engines(gravity=(0, 0, -9.81), loop=loop)
+    if box == "walls":
+        dry_neighbours()
+    functors = scene.interaction_loop(loop)
+    functors.physDispatcher.functors = functors.physDispatcher.functors + [Ip2_FrictMat_FrictMat_FrictPhys()]
+    functors.lawDispatcher.functors = functors.lawDispatcher.functors + [Law2_ScGeom_FrictPhys_CundallStrack()]
+    O.engines = scene.engines(gravity=(0, 0, -9.81), loop=functors)
     O.dt = scene.stable_dt(0.1)
     engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
     engine.ompThreads = threads
     O.run(STEPS, True)
     law = stress.capillary_law()
     state = [(tuple(b.state.pos), tuple(b.state.vel), tuple(b.state.angVel)) for b in O.bodies if b is not None and b.dynamic]
-    fn = {(i.id1, i.id2): tuple(i.phys.normalForce) for i in O.interactions}
+    fn = {(i.id1, i.id2): (i.isReal, i.iterMadeReal, type(i.phys).__name__, tuple(i.phys.normalForce) if i.isReal else None)
+          for i in O.interactions.all(False)}
     return state, (law.nBridges, law.liquidVolume, law.liquidFormed, law.liquidReleased), fn, engine
 
 
@@ -63,7 +84,10 @@ for box in ("walls", "facets"):
             ck.true(one == ref, "%s: positions and velocities bit-identical to InteractionLoop (largest scaled difference %.3g)"
                     % (tag, scaled_difference(ref, one)))
             ck.true(one_totals == ref_totals, "%s: liquid totals identical %s vs %s" % (tag, one_totals, ref_totals))
-            ck.true(one_fn == ref_fn, "%s: the same interactions with identical normal forces" % tag)
+            dry = sum(1 for v in ref_fn.values() if v[2] == "FrictPhys")
+            ck.true(box != "walls" or dry > 0, "%s: %d interactions of the dry FrictMat packing (Cundall-Strack law)" % (tag, dry))
+            ck.true(one_fn == ref_fn, "%s: the same real and potential interactions, made real at the same steps, with identical normal "
+                    "forces (%d, %d real)" % (tag, len(ref_fn), sum(1 for v in ref_fn.values() if v[0])))
             continue
         for threads in (1, 2):
             state, totals, _, _ = run("fused", box, friction, threads)
