@@ -180,13 +180,13 @@ void PendularLoop::action()
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
 	const int        subdomain    = scene->subdomain;
-	long             fused = 0, dispatchedCount = 0;
+	long             fused = 0, dispatchedCount = 0, apart = 0;
 	slots.resize(size);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
 	// Static schedule: each thread gets the same interactions in every run, so a run with a given
 	// number of threads is reproducible.
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : fused, dispatchedCount)
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : fused, dispatchedCount, apart)
 #endif
 	for (long i = 0; i < size; ++i) {
 		// Two levels: the Interaction (unless a potential one seen before), then, once it is cached,
@@ -216,6 +216,7 @@ void PendularLoop::action()
 				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
 				if ((q2.pos - q1.pos).squaredNorm() > sumR * sumR) {
 					++fused;
+					++apart;
 					continue;
 				}
 			}
@@ -228,6 +229,7 @@ void PendularLoop::action()
 	}
 	nFused        = fused;
 	nDispatched   = dispatchedCount;
+	nApart        = apart;
 	const auto t2 = Clock::now();
 	flushForces(threads);
 	gatherTime += ns(t0, t1);
