@@ -24,9 +24,7 @@ case "$cmd" in
     Y="$BUILD_DIR/yade-capillary"
     rm -rf "$BUILD_DIR/bench" && mkdir -p "$BUILD_DIR/bench"  # cells prepared by this build
     "$Y" -j1 -n -x scripts/benchmark_packing.py
-    for config in ci validation_probe; do
-      for j in 1 2; do "$Y" -j$j -n -x scripts/benchmark_shear_cell.py $config 1000 "$BUILD_DIR/bench/$config.yade.gz"; done
-    done
+    for config in ci validation_probe; do "$Y" -j2 -n -x scripts/benchmark_shear_cell.py $config 1000 "$BUILD_DIR/bench/$config.yade.gz"; done
     "$Y" -j2 -n -x scripts/benchmark_gladkyy_probe.py ;;
   setup) ;;
 esac

@@ -1,10 +1,10 @@
 # Speed of the wet (13.6 nl) shear cell: YADE's built-in Law2_ScGeom_ViscElCapPhys_Basic
 # (Willett_numeric, the baseline), our Law2 (willett_full) in YADE's InteractionLoop and in
-# PendularLoop, same positions and time step, in one run; threads as given by -j.
-# A benchmark, not a test.
-# Run:  build/yade-capillary -j1 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache]
+# PendularLoop, same positions and time step, on one and on two OpenMP threads, interleaved in one
+# run. A benchmark, not a test.
+# Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache]
 #   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
-#   cache: file of the prepared cell, made if missing, so that runs with -j1 and -j2 share it.
+#   cache: file of the prepared cell, made if missing.
 import sys
 
 from yade import O
@@ -14,8 +14,13 @@ from yade_capillary import benchmark
 config = sys.argv[1] if len(sys.argv) > 1 else "ci"
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
 cache = sys.argv[3] if len(sys.argv) > 3 else None
-builtin, standard, fused = benchmark.shear_cell(steps, config=config, cache=cache)
-print("(b) shear cell %s, wet13.6nl, %d steps, %d thread(s), particle-steps/s (ratio to the built-in law):" % (config, steps, O.numThreads))
-for name, r in (("YADE built-in law", builtin), ("ours, Law2 in InteractionLoop", standard), ("ours, PendularLoop", fused)):
-    print("  %-32s %10.3g  (%.2f)" % (name, r["particle_steps_per_s"], r["particle_steps_per_s"] / builtin["particle_steps_per_s"]))
+threads = tuple(range(1, O.numThreads + 1))
+results = benchmark.shear_cell(steps, config=config, cache=cache, threads=threads)
+print("(b) shear cell %s, wet13.6nl, %d steps, particle-steps/s (ratio to the built-in law on as many threads):" % (config, steps))
+for t in threads:
+    base = results[t][0]["particle_steps_per_s"]
+    for name, r in zip(("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop"), results[t]):
+        print("  %d thread(s)  %-32s %10.3g  (%.2f)" % (t, name, r["particle_steps_per_s"], r["particle_steps_per_s"] / base))
+for k, name in enumerate(("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop")):
+    print("  speed-up from %d threads, %-32s %.2f" % (threads[-1], name, results[threads[-1]][k]["particle_steps_per_s"] / results[1][k]["particle_steps_per_s"]))
 sys.exit(0)

@@ -29,6 +29,9 @@ namespace {
 			__builtin_prefetch(c + offset);
 	}
 	constexpr long prefetchAhead = 8; // interactions; the Interaction itself twice as far
+	// Below this many bodies, the per-body phases (gather, zeroing, force hand-over) run on one
+	// thread: starting a parallel region costs more than they do.
+	constexpr long parallelBodies = 20000;
 
 	int threadNum()
 	{
@@ -103,7 +106,7 @@ void PendularLoop::gather(int threads)
 	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
 	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies)
 #endif
 	for (size_t id = 0; id < n; ++id) {
 		// Two levels: the Body, then, once it is cached, its State and Shape.
@@ -166,7 +169,7 @@ void PendularLoop::action()
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies)
 #endif
 	for (int t = 0; t < threads; ++t) { // each thread zeroes its own arrays
 		threadForce[t].assign(particles.size(), Vector3r::Zero());
@@ -184,9 +187,10 @@ void PendularLoop::action()
 	slots.resize(size);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
 	// Static schedule: each thread gets the same interactions in every run, so a run with a given
-	// number of threads is reproducible.
+	// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
+	// spread evenly over the container (one half per thread left one thread idle a third of the time).
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : fused, dispatchedCount, apart)
+#pragma omp parallel for schedule(static, 1024) num_threads(threads) reduction(+ : fused, dispatchedCount, apart)
 #endif
 	for (long i = 0; i < size; ++i) {
 		// Two levels: the Interaction (unless a potential one seen before), then, once it is cached,
@@ -417,7 +421,7 @@ void PendularLoop::flushForces(int threads)
 	// the other threads' buffers hold nothing for it.
 	const long n = long(particles.size());
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies)
 #endif
 	for (long id = 0; id < n; ++id) {
 		Vector3r f = threadForce[0][id], t = threadTorque[0][id];

@@ -110,13 +110,15 @@ def memory():
     return dict(PendularLoop().memory())
 
 
-def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None):
+def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None, threads=(1,)):
     """The prepared shear cell rotating, with YADE's built-in law (Willett_numeric) and with ours
     (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
     in one run: particle-steps per second of each (fastest of `repeats` interleaved runs; threads
-    as given to yade by -j). cache: file of the prepared cell, prepared there if missing (so that
-    runs with other thread counts start from the same cell). Returns (builtin, ours standard, ours
-    fused) dicts."""
+    threads: the numbers of OpenMP threads to measure, interleaved in the same process (every engine's
+    ompThreads; yade must be started with -j at least the largest): this machine's speed drifts by
+    up to 3x within minutes, so thread counts are compared within one run. cache: file of the
+    prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
+    fused)} of dicts."""
     import json
     import math
     import tempfile
@@ -132,13 +134,15 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None)
     bodies = [(b.state.pos, b.shape.radius, b.id in set(info["flowing"])) for b in O.bodies]
     dt = O.dt
 
-    def timed(material, loop):
+    def timed(material, loop, nthreads):
         O.reset()
         O.dt = dt
         mat = O.materials.append(material)
         for pos, radius, free in bodies:
             O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
         O.engines = shearcell.run_engines(info, loop)
+        for e in O.engines:
+            e.ompThreads = nthreads
         O.run(100, True)  # interactions and bridges in place before timing
         t0 = time.time()
         O.run(steps, True)
@@ -150,12 +154,13 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None)
                                    gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
     loop = lambda: InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
                                    [Law2_ScGeom_ViscElCapPhys_Basic()])
-    runs = [[], [], []]
+    runs = {t: [[], [], []] for t in threads}
     for _ in range(repeats):
-        runs[0].append(timed(builtin_mat(), loop()))
-        runs[1].append(timed(ours_mat(), "standard"))
-        runs[2].append(timed(ours_mat(), "fused"))
-    return [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs]
+        for t in threads:
+            runs[t][0].append(timed(builtin_mat(), loop(), t))
+            runs[t][1].append(timed(ours_mat(), "standard", t))
+            runs[t][2].append(timed(ours_mat(), "fused", t))
+    return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
 
 
 def engine_times(steps):
