@@ -182,7 +182,6 @@ void PendularLoop::action()
 	removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
-	const int        subdomain    = scene->subdomain;
 	long             fused = 0, dispatchedCount = 0, apart = 0;
 	slots.resize(size);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
