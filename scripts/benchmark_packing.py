@@ -23,9 +23,9 @@ for r in results:
     if "pass" in r:
         print("  %s: gather %.1f + pass %.1f + forces %.1f ns per bridge-step" % (r["law"], r["gather"], r["pass"], r["flush"]))
 mem = benchmark.memory()
-ours, theirs = mem["ScGeom"] + mem["PendularPhys"], mem["ScGeom"] + mem["ViscElCapPhys"]
+ours, theirs = mem["ScGeom"] + mem["PendularPhys"] + mem["slot"], mem["ScGeom"] + mem["ViscElCapPhys"]
 print("(c) bytes per bridge (sizeof; plus the Interaction, %d B, and shared_ptr control blocks, the same for both laws):" % mem["Interaction"])
-print("  ours ScGeom %d + PendularPhys %d = %d B; built-in ScGeom %d + ViscElCapPhys %d = %d B; ratio %.2f" %
-      (mem["ScGeom"], mem["PendularPhys"], ours, mem["ScGeom"], mem["ViscElCapPhys"], theirs, ours / theirs))
-print("  PendularLoop per body: gathered data %d B, forces %d B per thread" % (mem["particle"], mem["forces"]))
+print("  ours ScGeom %d + PendularPhys %d + PendularLoop's slot %d = %d B; built-in ScGeom %d + ViscElCapPhys %d = %d B; ratio %.2f" %
+      (mem["ScGeom"], mem["PendularPhys"], mem["slot"], ours, mem["ScGeom"], mem["ViscElCapPhys"], theirs, ours / theirs))
+print("  PendularLoop per body: gathered data %d + %d B, forces %d B per thread" % (mem["particle"], mem["near"], mem["forces"]))
 sys.exit(0)

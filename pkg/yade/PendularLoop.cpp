@@ -79,7 +79,7 @@ struct PendularLoop::Resolved {
 	vector<IntrCallback::FuncPtr>            callbacks;
 };
 
-bool PendularLoop::resolve(Resolved& r)
+void PendularLoop::resolve(Resolved& r)
 {
 	static shared_ptr<Shape>    sphere(new Sphere);
 	static shared_ptr<Material> material(new PendularMat);
@@ -94,7 +94,6 @@ bool PendularLoop::resolve(Resolved& r)
 	// Exactly Ig2_Sphere_Sphere_ScGeom: a subclass (ScGeom6D) makes another geometry.
 	if (ig2 && typeid(*ig2) == typeid(Ig2_Sphere_Sphere_ScGeom)) r.ig2 = static_cast<const Ig2_Sphere_Sphere_ScGeom*>(ig2.get());
 	r.fused = r.ig2 && r.ip2 && r.law;
-	return r.fused;
 }
 
 void PendularLoop::gather(int threads)
@@ -225,7 +224,9 @@ void PendularLoop::action()
 			}
 		}
 		step(I, r, fused, dispatchedCount);
-		slot.interaction = I;
+		// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the
+		// control block, one more cache line per interaction and step.
+		if (!slot.same(I)) slot.interaction = I;
 		slot.id1         = I->getId1();
 		slot.id2         = I->getId2();
 		slot.potential   = !I->isReal();
@@ -248,6 +249,8 @@ boost::python::dict PendularLoop::memory() const
 	d["PendularPhys"]  = sizeof(PendularPhys);
 	d["ViscElCapPhys"] = sizeof(ViscElCapPhys);
 	d["particle"]      = sizeof(Particle);
+	d["near"]          = sizeof(Near);
+	d["slot"]          = sizeof(Slot);
 	d["forces"]        = 2 * sizeof(Vector3r);
 	return d;
 }
@@ -341,15 +344,29 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 		r.ip2->go(b1->material, b2->material, I);
 	}
 	if (!wasReal) I->iterMadeReal = scene->iter;
-	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
-		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain) };
-	ThreadSink sink { threadForce[thread].data(), threadTorque[thread].data(), I->getId1(), I->getId2(), I->isActive };
-	if (!r.law->apply(geom, static_cast<PendularPhys&>(*I->phys), k, scene->dt, rotate, sink)) {
+	if (!applyLaw(*I, geom, r, shift2, shiftVel, rotate, thread)) {
 		scene->interactions->requestErase(I);
 		return;
 	}
+	callbacksOn(*I, r);
+}
+
+template <class Rotate>
+bool PendularLoop::applyLaw(
+        const Interaction& I, const ScGeom& geom, const Resolved& r, const Vector3r& shift2, const Vector3r& shiftVel, const Rotate& rotate, int thread)
+{
+	const Particle&          p1 = particles[I.getId1()];
+	const Particle&          p2 = particles[I.getId2()];
+	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
+		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain) };
+	ThreadSink               sink { threadForce[thread].data(), threadTorque[thread].data(), I.getId1(), I.getId2(), I.isActive };
+	return r.law->apply(geom, static_cast<PendularPhys&>(*I.phys), k, scene->dt, rotate, sink);
+}
+
+void PendularLoop::callbacksOn(Interaction& I, const Resolved& r)
+{
 	for (size_t j = 0; j < r.callbacks.size(); ++j)
-		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), I.get());
+		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), &I);
 }
 
 // Every interaction that is not fused: the steps of InteractionLoop (geometry, physics and law
@@ -397,21 +414,13 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 	}
 	bool keep;
 	if (r.law && I->functorCache.constLaw.get() == r.law) {
-		const Particle&          p1 = particles[I->getId1()];
-		const Particle&          p2 = particles[I->getId2()];
-		const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2,
-			                     scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero(),
-			                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain) };
-		ThreadSink sink { threadForce[thread].data(), threadTorque[thread].data(), I->getId1(), I->getId2(), I->isActive };
-		const ScGeom& geom   = static_cast<const ScGeom&>(*I->geom);
-		const auto    rotate = [&geom](Vector3r& v) { geom.rotate(v); };
-		keep = r.law->apply(geom, static_cast<PendularPhys&>(*I->phys), k, scene->dt, rotate, sink);
+		const ScGeom&  geom     = static_cast<const ScGeom&>(*I->geom);
+		const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
+		keep                    = applyLaw(*I, geom, r, shift2, shiftVel, [&geom](Vector3r& v) { geom.rotate(v); }, thread);
 	} else
 		keep = I->functorCache.constLaw->go(I->geom, I->phys, I.get());
 	if (!keep) scene->interactions->requestErase(I);
-	if (!I->isReal()) return;
-	for (size_t j = 0; j < r.callbacks.size(); ++j)
-		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), I.get());
+	if (I->isReal()) callbacksOn(*I, r);
 }
 
 void PendularLoop::flushForces(int threads)

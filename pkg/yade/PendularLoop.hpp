@@ -29,11 +29,16 @@ public:
 
 private:
 	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
-	bool resolve(Resolved&);
+	void resolve(Resolved&);
 	void gather(int threads);
 	void step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
+	// Our law, inline, on the gathered data, into the thread's force arrays; false: reset I.
+	template <class Rotate>
+	bool applyLaw(const Interaction& I, const ScGeom& geom, const Resolved& r, const Vector3r& shift2, const Vector3r& shiftVel, const Rotate& rotate,
+	              int thread);
+	void callbacksOn(Interaction& I, const Resolved& r);
 	void flushForces(int threads);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
@@ -80,7 +85,7 @@ public:
 		((Real, flushTime, 0, , "Wall time spent handing the summed forces to the force container since this was last set to 0 [ns].")),
 		/*ctor*/,
 		/*py*/
-		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison) and of the fused pass's per-body arrays (particle: gathered body data; forces: force and torque per thread).")
+		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
 	);
 	// clang-format on
 };

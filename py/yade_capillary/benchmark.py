@@ -176,15 +176,11 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0):
     untimed, then `steps` timed. Returns a dict: numbers of spheres and interactions, wall time per
     step, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
     step, and ns per step of each engine (where the time goes)."""
-    import json
-
     from . import shearcell
 
     cfg = shearcell.GLADKYY_SIZE
     ids = shearcell.build(cfg, case, spacing=2.0, fill=1.2)
-    info = {"config": "gladkyy_size", "case": case, "flowing": ids["flowing"], "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg}
-    O.tags["shearcell"] = json.dumps(info)
-    O.engines = shearcell.run_engines(info, loop)
+    O.engines = shearcell.run_engines({"rotating": ids["rotating"], "cfg": cfg}, loop)
     O.dt = cfg["dt_over_tc"] * cfg["tc"]
     O.run(100, True)
     O.timingEnabled = True
