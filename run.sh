@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # yade-capillary entry point. Sets up (installs, fetches headers, builds) when needed, then:
-#   ./run.sh validate   two-sphere validation (Gladkyy 2014, Table 1): summary table + results/two_sphere/
+#   ./run.sh validate   pull-off validations: two spheres (Gladkyy 2014, Table 1; results/two_sphere/),
+#                       sphere-wall and viscous pull-off (Elskamp 2018 Fig. 5a, 5b; results/sphere_wall/,
+#                       results/viscous_pull_off/): summary tables, CSV and PNG
 #   ./run.sh test       all tests (kernel unit tests, Python tests, in-YADE tests); further arguments
 #                       go to ctest, e.g. ./run.sh test -L fast (all but the slow shear-cell regression)
 #   ./run.sh bench      speed benchmarks against YADE's built-in capillary law (about 20 min): the
@@ -18,7 +20,10 @@ esac
 BUILD_DIR=$BUILD_DIR "$ROOT/tools/setup.sh"
 cd "$ROOT"
 case "$cmd" in
-  validate) "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/two_sphere.py results/two_sphere ;;
+  validate)
+    "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/two_sphere.py results/two_sphere
+    "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/sphere_wall.py results/sphere_wall
+    "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/viscous_pull_off.py results/viscous_pull_off ;;
   test) shift; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" "$@" ;;
   bench)
     Y="$BUILD_DIR/yade-capillary"

@@ -78,7 +78,7 @@ const std::string& common_args()
     volume: liquid bridge volume [m^3], > 0
     gamma: surface tension [N/m], > 0
     theta: contact angle [rad] in [0, pi/2) (on sphere 1; also on sphere 2 unless theta2 is given)
-    theta2: contact angle on sphere 2 [rad]; the formulas use the mean angle
+    theta2: contact angle on sphere 2 [rad]; the force models use acos((cos theta + cos theta2)/2), the lian and willett rupture rules the mean angle
     rupture: rupture rule, one of rupture_rules() ()" + rupture_names() + R"()
     linear_fmax [N], linear_kc [N/m]: linear_irreversible parameters; both 0 = calibrate from
            calibrate_from by equal maximum force and adhesive energy (Roy et al. 4.2)
@@ -119,23 +119,29 @@ PYBIND11_MODULE(_kernels, m)
 	        "force",
 	        [](const std::string& model, py::array_t<double, py::array::c_style | py::array::forcecast> gap, double R1, double R2, double volume, double gamma, double theta,
 	           std::optional<double> theta2, const std::string& rupture, double linear_fmax, double linear_kc,
-	           const std::string& calibrate_from, bool extrapolate) -> py::object {
+	           const std::string& calibrate_from, bool extrapolate, std::optional<double> range) -> py::object {
 		        const Bridge b = make_bridge(spec(model, R1, R2, volume, gamma, theta, theta2, rupture, linear_fmax, linear_kc, calibrate_from, extrapolate));
+		        const double upTo = range.value_or(b.rupture);
+		        if (!(upTo >= b.rupture && std::isfinite(upTo)))
+			        throw py::value_error("range = " + format_value(upTo) + " m is outside the allowed range [rupture, inf) = [" + format_value(b.rupture)
+			                              + ", inf) m (finite)");
 		        py::array_t<double> out(gap.request().shape);
 		        double*             o = out.mutable_data();
 		        const double*       g = gap.data();
 		        for (py::ssize_t i = 0; i < gap.size(); ++i) {
 			        if (std::isnan(g[i])) throw py::value_error("gap is NaN; allowed: any real number [m]");
-			        o[i] = bridge_force(b, g[i]);
+			        o[i] = bridge_force_within(b, g[i], upTo);
 		        }
 		        if (gap.ndim() == 0) return py::float_(o[0]);
 		        return std::move(out);
 	        },
 	        py::arg("model"), py::arg("gap"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("gamma"), py::arg("theta") = 0.0,
 	        py::arg("theta2") = py::none(), py::arg("rupture") = "willett", py::arg("linear_fmax") = 0.0, py::arg("linear_kc") = 0.0,
-	        py::arg("calibrate_from") = "willett_full", py::arg("extrapolate") = false,
+	        py::arg("calibrate_from") = "willett_full", py::arg("extrapolate") = false, py::arg("range") = py::none(),
 	        (std::string("Capillary force [N] (attraction > 0) at surface gap(s) `gap` [m] (float or array): 0 beyond the rupture "
-	                     "distance, F(0) for gap <= 0.")
+	                     "distance, F(0) for gap <= 0. range [m] >= the rupture distance: the gap up to which a bridge lasts under the "
+	                     "dynamic rupture rule (Elskamp2018 eq. 33; e.g. dynamic_rupture_distance(...)); beyond the rupture distance the "
+	                     "model's formula is continued, floored at 0 (young_laplace_table keeps its force at the rupture distance).")
 	         + common_args())
 	                .c_str());
 
@@ -200,7 +206,7 @@ PYBIND11_MODULE(_kernels, m)
 	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
 	      "Willett's f1..f4 (Gladkyy2014 eq. B1-B4) for V* = V/R^3 [-] and theta [rad].");
 
-	// ---- viscous bridge forces (Elskamp2018 eq. 25-29, 33); not used by the YADE layer yet ----
+	// ---- viscous bridge forces (Elskamp2018 eq. 25-29, 33); the YADE layer evaluates the same kernels ----
 	m.def("viscous_laws", [] {
 		py::list l;
 		for (const auto& r : normal_viscous_laws()) l.append(py::make_tuple(r.name, r.reference));

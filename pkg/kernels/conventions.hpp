@@ -20,6 +20,17 @@ inline bool      is_wall(double R) { return std::isinf(R) && R > 0; }
 // Gladkyy2014 eq. (1): effective radius of two spheres.
 inline double harmonic_mean_radius(double r1, double r2) { return 2 * r1 * r2 / (r1 + r2); }
 
+// Two contact angles as one, for the force models: the angle whose cosine is the mean of the
+// cosines, acos((cos theta1 + cos theta2)/2) [rad] (Elskamp2018 eq. 14-15). It is the exact
+// small-volume limit (a sphere-plane bridge tends to F(0) = 2 pi R1 gamma (cos theta1 + cos theta2));
+// against the exact solver for glass-steel (15/45 deg) and POM-PVC (40/50 deg) it is closer than the
+// cosine of the mean angle, which over-predicts F(0) by 3.5-4.9 % for glass-steel
+// (scripts/mixed_angles.py, README). Equal angles are returned unchanged.
+inline double equivalent_angle(double theta1, double theta2)
+{
+	return theta1 == theta2 ? theta1 : std::acos((std::cos(theta1) + std::cos(theta2)) / 2);
+}
+
 // Derjaguin: a sphere R1 against a plane is equivalent to two equal spheres of radius 2 R1, whose
 // harmonic and geometric means are both 2 R1, so that every model gives the sphere-plane limit
 // F(0) = 4 pi R1 gamma cos(theta).

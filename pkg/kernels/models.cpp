@@ -51,8 +51,9 @@ namespace {
 		c.R      = harmonic_mean_radius(c.r1, c.r2);
 		c.theta1 = std::min(p.theta1, d.theta_max);
 		c.theta2 = std::min(p.theta2, d.theta_max);
-		if (d.equal_angles) c.theta1 = c.theta2 = (c.theta1 + c.theta2) / 2;
-		c.theta  = (c.theta1 + c.theta2) / 2;
+		if (d.equal_angles) c.theta1 = c.theta2 = equivalent_angle(c.theta1, c.theta2);
+		c.theta      = equivalent_angle(c.theta1, c.theta2);
+		c.theta_mean = (c.theta1 + c.theta2) / 2;
 		c.vstar  = std::clamp(p.vstar, d.vstar_min, d.vstar_max);
 		c.volume = c.vstar * c.R * c.R * c.R;
 		return c;
@@ -275,7 +276,7 @@ Pair pair_of(const BridgeSpec& s)
 	p.R      = harmonic_mean_radius(p.r1, p.r2);
 	p.ratio  = std::max(p.r1, p.r2) / std::min(p.r1, p.r2);
 	p.volume = s.volume, p.gamma = s.gamma;
-	p.theta1 = s.theta1, p.theta2 = s.theta2, p.theta = (s.theta1 + s.theta2) / 2;
+	p.theta1 = s.theta1, p.theta2 = s.theta2, p.theta = equivalent_angle(s.theta1, s.theta2), p.theta_mean = (s.theta1 + s.theta2) / 2;
 	p.vstar  = s.volume / (p.R * p.R * p.R);
 	if (!(p.vstar >= Plausible::vstar_min && p.vstar <= Plausible::vstar_max))
 		out_of_range("volume", s.volume,
@@ -304,10 +305,12 @@ std::array<double, 4> willett_coefficients(double vstar, double t)
 double rupture_distance(Rupture rule, const Pair& p)
 {
 	switch (rule) {
-		case Rupture::lian: return (1 + p.theta / 2) * std::cbrt(p.volume); // Richefeu2008 eq. (6)
+		// lian, willett: printed for equal angles; unequal ones enter by their mean (the exact rupture
+		// of unequal angles is shorter still, README "Mixed contact angles").
+		case Rupture::lian: return (1 + p.theta_mean / 2) * std::cbrt(p.volume); // Richefeu2008 eq. (6)
 		case Rupture::willett: {
 			const double vs = std::cbrt(p.vstar);
-			return p.R * (1 + p.theta / 2) * (vs + vs * vs / 10); // Gladkyy2014 eq. (2)
+			return p.R * (1 + p.theta_mean / 2) * (vs + vs * vs / 10); // Gladkyy2014 eq. (2)
 		}
 		case Rupture::willett_elskamp: {
 			// Elskamp2018 eq. (32): r_i is the larger sphere; r_eff the harmonic mean, V* = V/r_eff^3.

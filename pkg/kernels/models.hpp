@@ -25,6 +25,7 @@
 #include "conventions.hpp"
 #include "young_laplace_table.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -106,7 +107,8 @@ struct Pair {
 	double R;              // [m] harmonic mean of r1, r2 (Gladkyy2014 eq. 1)
 	double volume, gamma;  // [m^3], [N/m]
 	double theta1, theta2; // [rad]
-	double theta;          // [rad] mean contact angle (Elskamp2018, after eq. 15)
+	double theta;          // [rad] equivalent contact angle of the force models (equivalent_angle, conventions.hpp)
+	double theta_mean;     // [rad] (theta1 + theta2)/2, the angle of the lian and willett rupture rules
 	double vstar;          // V/R^3 [-]
 	double ratio;          // max(r1, r2) / min(r1, r2) [-]
 	bool   wall;
@@ -295,18 +297,26 @@ struct Bridge {
 // computes the invariants.
 Bridge make_bridge(const BridgeSpec& spec);
 
-// Capillary force [N] at gap a [m]: 0 for a > rupture (and a NaN gap), F(0) for a <= 0.
-inline double bridge_force(const Bridge& b, double a)
+// Capillary force [N] at gap a [m] of a bridge that lasts up to the gap `range` [m]: 0 for a > range
+// (and a NaN gap), F(0) for a <= 0. range = b.rupture is the static bridge (bridge_force). A longer
+// range is the dynamic rupture rule (Elskamp2018 eq. 33): between the static rupture distance and
+// range each model's formula is continued, floored at 0 (Elskamp evaluates the closed-form models
+// up to S_rup,dyn; Soulie's constant C may turn the continued formula negative; the tabulated exact
+// bridge, which has no static solution there, keeps its force at the static rupture distance).
+inline double bridge_force_within(const Bridge& b, double a, double range)
 {
-	if (!(a <= b.rupture)) return 0;
+	if (!(a <= range)) return 0;
 	if (a <= 0) return b.force0;
-	return std::visit(
+	const double f = std::visit(
 	        [a](const auto& model) -> double {
 		        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, std::monostate>) return 0;
 		        else return model.force(a);
 	        },
 	        b.m);
+	return a <= b.rupture ? f : std::max(f, 0.0);
 }
+// Capillary force [N] at gap a [m]: 0 for a > rupture (and a NaN gap), F(0) for a <= 0.
+inline double bridge_force(const Bridge& b, double a) { return bridge_force_within(b, a, b.rupture); }
 
 // One-shot convenience: make_bridge() + bridge_force().
 double force(const BridgeSpec& spec, double a);

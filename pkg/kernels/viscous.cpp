@@ -65,14 +65,10 @@ const char* name_of(NormalViscous law)
 	throw std::invalid_argument("unknown NormalViscous value " + std::to_string(int(law)));
 }
 
-double effective_separation(double S, double R1, double R2, double S_min_factor) { return checked_separation(S, R1, R2, 0, S_min_factor); }
-
-double normal_viscous_coefficient(NormalViscous law, double S, double R1, double R2, double eta, double volume, double S_min_factor)
+ViscousBridge make_viscous(NormalViscous law, double R1, double R2, double eta, double volume, double gamma, double S_min_factor)
 {
-	const double Se = checked_separation(S, R1, R2, eta, S_min_factor);
+	checked_separation(0, R1, R2, eta, S_min_factor);
 	if (!(volume >= 0 && std::isfinite(volume))) out_of_range("volume", volume, "[0, inf) (finite)", "m^3");
-	const double rs = reduced_radius(R1, R2);
-	double       factor = 1;
 	if (law == NormalViscous::pitois) {
 		double r1, r2;
 		equivalent_pair(R1, R2, r1, r2);
@@ -80,14 +76,27 @@ double normal_viscous_coefficient(NormalViscous law, double S, double R1, double
 		if (!(vstar >= Plausible::vstar_min && vstar <= Plausible::vstar_max))
 			out_of_range("V* = V/R^3", vstar, "[" + format_value(Plausible::vstar_min) + ", " + format_value(Plausible::vstar_max) + "]", "",
 			             "volume = " + format_value(volume) + " m^3 (required by the pitois law)");
-		// 1 - 1/sqrt(1 + x) = x / (sqrt(1 + x) (1 + sqrt(1 + x))): no cancellation at small x.
-		const double x = volume / (pi * rs * Se * Se), q = std::sqrt(1 + x);
-		const double g = x / (q * (1 + q));
-		factor = g * g; // eq. (26)
 	} else if (law != NormalViscous::adams_perchard)
 		throw std::invalid_argument("unknown NormalViscous value " + std::to_string(int(law)));
-	if (eta == 0) return 0;
-	return 6 * pi * eta * rs * rs / Se * factor; // eq. (25), (26)
+	if (!(gamma == 0 || (gamma >= Plausible::gamma_min && gamma <= Plausible::gamma_max)))
+		out_of_range("gamma", gamma, "{0} or [" + format_value(Plausible::gamma_min) + ", " + format_value(Plausible::gamma_max) + "]", "N/m");
+	ViscousBridge b;
+	b.law   = law;
+	b.rs    = reduced_radius(R1, R2);
+	b.s_min = S_min_factor * b.rs;
+	b.cn0   = 6 * pi * eta * b.rs * b.rs; // eq. (25), (26)
+	b.ct0   = 6 * pi * eta * b.rs;        // eq. (28), (29)
+	b.x0    = volume / (pi * b.rs);       // eq. (26)
+	b.ca    = gamma > 0 ? std::sqrt(eta / gamma) : 0; // eq. (33)
+	return b;
+}
+
+double effective_separation(double S, double R1, double R2, double S_min_factor) { return checked_separation(S, R1, R2, 0, S_min_factor); }
+
+double normal_viscous_coefficient(NormalViscous law, double S, double R1, double R2, double eta, double volume, double S_min_factor)
+{
+	checked_separation(S, R1, R2, eta, S_min_factor);
+	return make_viscous(law, R1, R2, eta, volume, 0, S_min_factor).normal_coefficient(S);
 }
 
 double normal_viscous_force(NormalViscous law, double S, double v_n, double R1, double R2, double eta, double volume, double S_min_factor)
@@ -100,15 +109,8 @@ double normal_viscous_force(NormalViscous law, double S, double v_n, double R1, 
 
 void tangential_viscous_coefficients(double S, double R1, double R2, double eta, double S_min_factor, double& c_t, double& c_r, bool& near)
 {
-	const double Se = checked_separation(S, R1, R2, eta, S_min_factor);
-	const double rs = reduced_radius(R1, R2), base = 6 * pi * eta * rs, L = std::log(rs / Se);
-	near = Se < 0.1 * rs;
-	c_t  = base * std::max(8.0 / 15 * L + 0.9588, 0.0); // eq. (28), (29); floored at 0 beyond 6.03 r*
-	if (near) c_r = base * (2.0 / 15 * L - 0.2526);     // eq. (28); > 0.054 base here
-	else {
-		const double h = rs / (Se + rs);
-		c_r = base / 8 * h * h * h * h * (1 - 3 * h / 8); // eq. (29)
-	}
+	checked_separation(S, R1, R2, eta, S_min_factor);
+	make_viscous(NormalViscous::adams_perchard, R1, R2, eta, 0, 0, S_min_factor).tangential_coefficients(S, c_t, c_r, near);
 }
 
 TangentialViscous tangential_viscous(double S, const Vec3& n, const Vec3& v_rel, const Vec3& omega1, const Vec3& omega2, double R1, double R2,
@@ -133,8 +135,7 @@ TangentialViscous tangential_viscous(double S, const Vec3& n, const Vec3& v_rel,
 		vt[k]  = v_rel[k] - vn * n[k];
 		w_r[k] = R1 * omega1[k] + (wall ? 0.0 : R2 * omega2[k]); // omega_r, Elskamp2018 after eq. (27)
 	}
-	const Vec3 w = cross(w_r, n);
-	for (int k = 0; k < 3; ++k) t.force[k] = -t.c_t * vt[k] - t.c_r * w[k];
+	t.force        = tangential_viscous_force(t.c_t, t.c_r, n, vt, w_r);
 	const Vec3 nxF = cross(n, t.force);
 	for (int k = 0; k < 3; ++k) {
 		t.moment1[k] = R1 * nxF[k];

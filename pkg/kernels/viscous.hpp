@@ -1,6 +1,7 @@
 // Viscous forces of a pendular liquid bridge (Elskamp2018 section 2.2.3, eq. 25-29) and the
 // dynamic rupture distance (Elskamp2018 eq. 33, Pitois et al.). Pure kernels: SI units, no YADE
-// types. Not used by the YADE layer yet.
+// types. ViscousBridge holds a bridge's invariants and is the one place of the formulas: the checked
+// functions below and the YADE layer (Law2_ScGeom_PendularPhys_Bridge) evaluate through it.
 //
 // Conventions (those of Elskamp2018):
 //   n       unit vector along the line of centres, pointing from particle 1 (i) to particle 2 (j);
@@ -20,6 +21,7 @@
 
 #include "conventions.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -116,6 +118,61 @@ void tangential_viscous_coefficients(double S, double R1, double R2, double eta,
 // surface velocity).
 TangentialViscous tangential_viscous(double S, const Vec3& n, const Vec3& v_rel, const Vec3& omega1, const Vec3& omega2, double R1,
                                      double R2, double eta, double S_min_factor = default_s_min_factor);
+
+// ---- one bridge: invariants computed once, per-step evaluation ---------------------------------
+// make_viscous validates (as the functions above) and computes everything that does not depend on
+// the gap; the members below are the per-step calls, without checks. eta = 0 gives exactly zero
+// coefficients. gamma [N/m] is needed only by the dynamic rupture rule (0: no dynamic rupture).
+struct ViscousBridge {
+	NormalViscous law   = NormalViscous::pitois;
+	double        rs    = 0; // r* [m]
+	double        s_min = 0; // S_min = S_min_factor r* [m]
+	double        cn0   = 0; // 6 pi eta r*^2 [N s], eq. (25), (26)
+	double        ct0   = 0; // 6 pi eta r* [N s/m], eq. (28), (29)
+	double        x0    = 0; // V / (pi r*) [m^2]: eq. (26) has V/(pi r* S^2) = x0 / S^2
+	double        ca    = 0; // sqrt(eta / gamma) [sqrt(s/m)]: eq. (33) has sqrt(|v| eta/gamma) = ca sqrt(|v|)
+
+	// S_eff = max(S, 0) + S_min [m] (Elskamp2018 after eq. 29; an overlap gets the force at contact).
+	double separation(double S) const { return std::max(S, 0.0) + s_min; }
+	// c of F1 = -c v_n n [N s/m], eq. (25) or (26).
+	double normal_coefficient(double S) const
+	{
+		const double Se = separation(S), c = cn0 / Se;
+		if (law == NormalViscous::adams_perchard) return c; // eq. (25)
+		// 1 - 1/sqrt(1 + x) = x / (sqrt(1 + x) (1 + sqrt(1 + x))): no cancellation at small x.
+		const double x = x0 / (Se * Se), q = std::sqrt(1 + x), g = x / (q * (1 + q));
+		return c * g * g; // eq. (26)
+	}
+	// c_t, c_r of F1 = -c_t v_t - c_r (omega_r x n) [N s/m]; near: eq. (28) (S_eff < 0.1 r*), else (29).
+	void tangential_coefficients(double S, double& c_t, double& c_r, bool& near) const
+	{
+		const double Se = separation(S), L = std::log(rs / Se);
+		near = Se < 0.1 * rs;
+		c_t  = ct0 * std::max(8.0 / 15 * L + 0.9588, 0.0); // eq. (28), (29); floored at 0 beyond 6.03 r*
+		if (near) c_r = ct0 * (2.0 / 15 * L - 0.2526);     // eq. (28); > 0.054 ct0 here
+		else {
+			const double h = rs / (Se + rs);
+			c_r = ct0 / 8 * h * h * h * h * (1 - 3 * h / 8); // eq. (29)
+		}
+	}
+	// S_rup,dyn / S_rup = 1 + sqrt(|v_rel| eta / gamma) [-], eq. (33); v_rel [m/s] the relative speed.
+	double rupture_stretch(double v_rel) const { return 1 + ca * std::sqrt(std::abs(v_rel)); }
+};
+// Validates like the functions above (volume: required by pitois; gamma: 0, or in the Plausible
+// range for the dynamic rupture rule).
+ViscousBridge make_viscous(NormalViscous law, double R1, double R2, double eta, double volume, double gamma = 0,
+                           double S_min_factor = default_s_min_factor);
+
+// F1 = -c_t v_t - c_r (omega_r x n) [N] (eq. 28, 29): the one vector form, for any 3-vector type V
+// with operator[] (Vec3 here, Vector3r in the YADE layer).
+template <class V> V tangential_viscous_force(double c_t, double c_r, const V& n, const V& v_t, const V& omega_r)
+{
+	V f;
+	f[0] = -c_t * v_t[0] - c_r * (omega_r[1] * n[2] - omega_r[2] * n[1]);
+	f[1] = -c_t * v_t[1] - c_r * (omega_r[2] * n[0] - omega_r[0] * n[2]);
+	f[2] = -c_t * v_t[2] - c_r * (omega_r[0] * n[1] - omega_r[1] * n[0]);
+	return f;
+}
 
 // ---- dynamic rupture distance -------------------------------------------------------------
 // Elskamp2018 eq. (33), Pitois et al. 2001: S_rup,dyn = S_rup (1 + sqrt(|v1 - v2| eta / gamma)) [m],

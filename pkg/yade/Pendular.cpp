@@ -116,10 +116,11 @@ namespace {
 	// 1 + trace + det > 0 give h^2 + 2d < 4, i.e. dt < (2/w0)(sqrt(1 + z^2) - z) with
 	// z = c/(2 sqrt(k m)): 2/w0 undamped, smaller with damping. It is the central-difference limit
 	// with damping of Belytschko, Liu & Moran (2000), Nonlinear Finite Elements for Continua and
-	// Structures, chapter 6. Returns inf for a mode without stiffness or an immovable mass.
+	// Structures, chapter 6. A damper alone (k = 0) is the limit 2 m/c; inf for no stiffness and no damping, or an immovable mass.
 	Real oscillatorLimit(Real k, Real c, Real m)
 	{
-		if (!(k > 0) || !(m > 0) || !math::isfinite(m)) return std::numeric_limits<Real>::infinity();
+		if (!(m > 0) || !math::isfinite(m)) return std::numeric_limits<Real>::infinity();
+		if (!(k > 0)) return c > 0 ? 2 * m / c : std::numeric_limits<Real>::infinity(); // the limit k -> 0: a damper alone
 		const Real w0 = math::sqrt(k / m), z = c / (2 * math::sqrt(k * m));
 		return 2 / w0 * (math::sqrt(1 + z * z) - z);
 	}
@@ -149,11 +150,22 @@ namespace {
 		if (heavy2 && !heavy1) return mass1;
 		return (mass1 > 0 && mass2 > 0) ? mass1 * mass2 / (mass1 + mass2) : math::max(mass1, mass2);
 	}
+	// The viscous forces of a bridge (eta > 0) are dashpots in parallel with the contact's; their
+	// coefficients are largest at contact (S_eff = S_min), which bounds the separated bridge too.
 	Real pairCriticalDt(const PendularPhys& p, const Body& b1, const Body& b2)
 	{
 		if (heavy(b1) && heavy(b2)) return std::numeric_limits<Real>::infinity();
-		return math::min(oscillatorLimit(p.kn, p.cn, effectiveMass(b1, b2)), oscillatorLimit(p.ks, p.cs, tangentialMass(b1, b2)));
+		Real cn = p.cn, cs = p.cs;
+		if (p.viscid) {
+			Real ct, cr;
+			bool near;
+			p.viscous.tangential_coefficients(0, ct, cr, near);
+			cn += p.viscous.normal_coefficient(0);
+			cs += ct + cr;
+		}
+		return math::min(oscillatorLimit(p.kn, cn, effectiveMass(b1, b2)), oscillatorLimit(p.ks, cs, tangentialMass(b1, b2)));
 	}
+
 } // namespace
 
 void PendularCheck::action()
@@ -259,6 +271,24 @@ namespace {
 		return s;
 	}
 
+	// `rupture`: a static rule, optionally followed by +pitois (Pitois' dynamic rupture distance,
+	// Elskamp2018 eq. 33); pitois alone is willett+pitois. Returns (static rule, dynamic).
+	std::pair<capillary::Rupture, bool> parseRupture(const std::string& name)
+	{
+		static const std::string suffix = "+pitois";
+		std::string              rule = name;
+		bool                     dynamic = false;
+		if (rule == "pitois") rule = "willett", dynamic = true;
+		else if (rule.size() > suffix.size() && rule.compare(rule.size() - suffix.size(), suffix.size(), suffix) == 0) {
+			rule.resize(rule.size() - suffix.size());
+			dynamic = true;
+		}
+		for (const auto& r : capillary::rupture_rules())
+			if (rule == r.name) return { r.rule, dynamic };
+		throw std::invalid_argument("PendularMat.rupture = '" + name + "' is unknown; allowed: " + capillary::rupture_names()
+		                            + ", each optionally followed by +pitois (the dynamic rupture distance, Elskamp2018 eq. 33), or pitois (= willett+pitois)");
+	}
+
 	Real radiusOf(const shared_ptr<Body>& b)
 	{
 		const auto* sphere = dynamic_cast<const Sphere*>(b->shape.get());
@@ -268,15 +298,16 @@ namespace {
 
 PendularMat::Checked PendularMat::checked() const
 {
-	return { tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, wet, forceInContact, extrapolate, model, rupture, calibrateFrom };
+	return { tc,    en,         et,       kn,  cn,          ks,  cs,             frictionAngle, Vb,    gamma,   theta,
+		 linearFmax, linearKc, eta, viscousSmin, wet, forceInContact, extrapolate,   model, rupture, calibrateFrom, viscousNormal };
 }
 
 void PendularMat::restore(const Checked& c)
 {
-	std::tie(tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc)
-	        = std::tie(c.tc, c.en, c.et, c.kn, c.cn, c.ks, c.cs, c.frictionAngle, c.Vb, c.gamma, c.theta, c.linearFmax, c.linearKc);
-	std::tie(wet, forceInContact, extrapolate, model, rupture, calibrateFrom)
-	        = std::tie(c.wet, c.forceInContact, c.extrapolate, c.model, c.rupture, c.calibrateFrom);
+	std::tie(tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, eta, viscousSmin)
+	        = std::tie(c.tc, c.en, c.et, c.kn, c.cn, c.ks, c.cs, c.frictionAngle, c.Vb, c.gamma, c.theta, c.linearFmax, c.linearKc, c.eta, c.viscousSmin);
+	std::tie(wet, forceInContact, extrapolate, model, rupture, calibrateFrom, viscousNormal)
+	        = std::tie(c.wet, c.forceInContact, c.extrapolate, c.model, c.rupture, c.calibrateFrom, c.viscousNormal);
 }
 
 void PendularMat::postLoad(PendularMat&)
@@ -306,13 +337,32 @@ void PendularMat::validate()
 	if (!(theta >= 0 && theta < Mathr::HALF_PI)) badValue(c, "theta", theta, "[0, pi/2) (radians)", "rad");
 	if (!(linearFmax >= 0 && math::isfinite(linearFmax))) badValue(c, "linearFmax", linearFmax, "[0, inf)", "N");
 	if (!(linearKc >= 0 && math::isfinite(linearKc))) badValue(c, "linearKc", linearKc, "[0, inf)", "N/m");
+	if (!(eta >= 0 && eta <= capillary::viscous_limits::eta_max))
+		badValue(c, "eta", eta, ("[0, " + capillary::format_value(capillary::viscous_limits::eta_max) + "]").c_str(), "Pa s");
+	if (!(viscousSmin >= capillary::viscous_limits::s_min_factor_min && viscousSmin <= capillary::viscous_limits::s_min_factor_max))
+		badValue(c, "viscousSmin", viscousSmin,
+		         ("[" + capillary::format_value(capillary::viscous_limits::s_min_factor_min) + ", "
+		          + capillary::format_value(capillary::viscous_limits::s_min_factor_max) + "]")
+		                 .c_str(),
+		         "-");
+	const auto parsed = parseRupture(rupture);
 	try {
 		modelId     = capillary::model_from_name(model);
-		ruptureId   = capillary::rupture_from_name(rupture);
 		calibrateId = capillary::model_from_name(calibrateFrom);
 	} catch (const std::invalid_argument& e) {
 		throw std::invalid_argument(c + "." + e.what());
 	}
+	ruptureId      = parsed.first;
+	dynamicRupture = parsed.second;
+	try {
+		viscousId = capillary::normal_viscous_from_name(viscousNormal);
+	} catch (const std::invalid_argument&) {
+		throw std::invalid_argument(c + ".viscousNormal = '" + viscousNormal + "' is unknown; allowed: " + capillary::normal_viscous_names());
+	}
+	if (wet && dynamicRupture && !(eta > 0))
+		throw std::invalid_argument(c + ".rupture = '" + rupture + "' (Pitois' dynamic rupture distance, Elskamp2018 eq. 33) needs eta > 0; eta = "
+		                            + capillary::format_value(eta) + " Pa s (set eta before rupture, or use a static rule: "
+		                            + capillary::rupture_names() + ")");
 	if (calibrateId == capillary::Model::linear_irreversible)
 		throw std::invalid_argument(c + ".calibrateFrom = 'linear_irreversible' is not allowed; allowed: any other model");
 	if (wet && !(Vb > 0)) badValue(c, "Vb", Vb, "(0, inf) when wet=True (set Vb before wet)", "m^3");
@@ -333,16 +383,24 @@ void PendularMat::validate()
 }
 
 std::string PendularPhys::modelName() const { return modelIndex < 0 ? "" : capillary::name_of(capillary::Model(modelIndex)); }
-std::string PendularPhys::ruptureName() const { return ruptureIndex < 0 ? "" : capillary::name_of(capillary::Rupture(ruptureIndex)); }
+std::string PendularPhys::ruptureName() const
+{
+	return ruptureIndex < 0 ? "" : std::string(capillary::name_of(capillary::Rupture(ruptureIndex))) + (dynamicRupture ? "+pitois" : "");
+}
+std::string PendularPhys::viscousName() const { return viscousIndex < 0 ? "" : capillary::name_of(capillary::NormalViscous(viscousIndex)); }
 std::string PendularPhys::calibrateName() const { return calibrateIndex < 0 ? "" : capillary::name_of(capillary::Model(calibrateIndex)); }
 
 void PendularPhys::buildBridge()
 {
 	const capillary::BridgeSpec spec = specOf(*this);
-	bridge  = capillary::make_bridge(spec);
-	R       = capillary::pair_of(spec).R;
-	sCrit   = bridge.rupture;
-	force0  = bridge.force0;
+	bridge   = capillary::make_bridge(spec);
+	R        = capillary::pair_of(spec).R;
+	sCrit    = bridge.rupture;
+	sRupture = bridge.rupture;
+	force0   = bridge.force0;
+	viscid   = eta > 0;
+	if (viscid)
+		viscous = capillary::make_viscous(capillary::NormalViscous(viscousIndex), R1, R2, eta, Vb, dynamicRupture ? gamma : 0, viscousSmin);
 }
 
 void PendularPhys::postLoad(PendularPhys&)
@@ -368,17 +426,16 @@ void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1
 		report(e.what(), *I);
 		return;
 	}
-	{
-		const Real                        dt = pairCriticalDt(*phys, *body1, *body2);
-		const std::lock_guard<std::mutex> lock(dtMutex);
-		newCriticalDt = math::min(newCriticalDt, dt);
-	}
 	try {
 		setLiquid(phys, m1, m2, body1, body2);
 	} catch (const std::exception& e) {
-		phys->wet = false; // the bridge is refused, the contact law stays
+		phys->wet    = false; // the bridge is refused, the contact law stays
+		phys->viscid = false;
 		report(e.what(), *I);
 	}
+	const Real                        dt = pairCriticalDt(*phys, *body1, *body2);
+	const std::lock_guard<std::mutex> lock(dtMutex);
+	newCriticalDt = math::min(newCriticalDt, dt);
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::report(const std::string& what, const Interaction& I)
@@ -428,6 +485,7 @@ Real Ip2_PendularMat_PendularMat_PendularPhys::criticalDt(Body::id_t id1, Body::
 		throw std::invalid_argument("criticalDt: bodies " + std::to_string(id1) + " and " + std::to_string(id2) + " must both have a PendularMat");
 	auto phys = shared_ptr<PendularPhys>(new PendularPhys());
 	setContact(phys, *m1, *m2, body1, body2);
+	setLiquid(phys, *m1, *m2, body1, body2);
 	return pairCriticalDt(*phys, *body1, *body2);
 }
 
@@ -488,9 +546,13 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		if (m1.linearKc != m2.linearKc) mustMatch("linearKc", capillary::format_value(m1.linearKc), capillary::format_value(m2.linearKc));
 		mustMatch("calibrateFrom", m1.calibrateFrom, m2.calibrateFrom);
 		mustMatch("extrapolate", m1.extrapolate ? "True" : "False", m2.extrapolate ? "True" : "False");
+		mustMatch("viscousNormal", m1.viscousNormal, m2.viscousNormal);
+		if (m1.viscousSmin != m2.viscousSmin)
+			mustMatch("viscousSmin", capillary::format_value(m1.viscousSmin), capillary::format_value(m2.viscousSmin));
 		phys->R1             = radiusOf(body1);
 		phys->R2             = radiusOf(body2);
-		if (math::isinf(phys->R1)) { // keep the sphere first: the kernels take R2 = inf for a wall
+		phys->swapped        = math::isinf(phys->R1);
+		if (phys->swapped) { // keep the sphere first: the kernels take R2 = inf for a wall
 			std::swap(phys->R1, phys->R2);
 			phys->theta1 = m2.theta;
 			phys->theta2 = m1.theta;
@@ -508,6 +570,10 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		phys->linearFmax     = m1.linearFmax;
 		phys->linearKc       = m1.linearKc;
 		phys->forceInContact = m1.forceInContact;
+		phys->eta            = (m1.eta + m2.eta) / 2;
+		phys->viscousIndex   = phys->eta > 0 ? int(m1.viscousId) : -1;
+		phys->viscousSmin    = m1.viscousSmin;
+		phys->dynamicRupture = m1.dynamicRupture; // both wet: validated with eta > 0
 		phys->buildBridge();
 	}
 }

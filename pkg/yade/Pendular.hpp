@@ -6,6 +6,7 @@
 #include "YadeHeaders.hpp"
 #include <core/GlobalEngine.hpp>
 #include "models.hpp"
+#include "viscous.hpp"
 
 #include <limits>
 #include <mutex>
@@ -17,6 +18,8 @@ public:
 	capillary::Model   modelId       = capillary::Model::willett_full; // resolved from `model` by postLoad
 	capillary::Rupture ruptureId     = capillary::Rupture::willett;
 	capillary::Model   calibrateId   = capillary::Model::willett_full;
+	bool               dynamicRupture = false; // `rupture` ends with pitois (Elskamp2018 eq. 33)
+	capillary::NormalViscous viscousId = capillary::NormalViscous::pitois;
 	Real               dampingRatioN = 0; // beta/omega for `en`, see dampingRatioFor() in Pendular.cpp
 	void               postLoad(PendularMat&);
 
@@ -24,9 +27,9 @@ private:
 	// Attribute values after the last successful check: a rejected assignment is rolled back, so
 	// one bad value does not make every later assignment fail.
 	struct Checked {
-		Real        tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc;
+		Real        tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, eta, viscousSmin;
 		bool        wet, forceInContact, extrapolate;
-		std::string model, rupture, calibrateFrom;
+		std::string model, rupture, calibrateFrom, viscousNormal;
 	};
 	Checked checked() const;
 	void    restore(const Checked&);
@@ -54,13 +57,16 @@ public:
 		((bool, wet, false, Attr::triggerPostLoad, "True: liquid bridges form at contacts of two wet materials. Requires Vb > 0 and gamma > 0."))
 		((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean."))
-		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; formulas use the mean (Elskamp2018), the willett_elskamp rupture rule uses both."))
+		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; the force models use the angle whose cosine is the mean of the cosines (Elskamp2018 eq. 14-15, closer to the exact bridge than the mean angle), the lian and willett rupture rules the mean angle, willett_elskamp both."))
 		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model, one of:" CAPILLARY_MODEL_NAMES_LITERAL " (yade_capillary.kernels.models() lists each with its source and validity domain; young_laplace_table is the exact bridge, tabulated, with the exact rupture distance). A bridge outside its model's domain is refused unless extrapolate=True; a contact angle outside it is refused when the material is wet. Must be equal on both materials."))
-		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32). Must be equal on both materials. linear_irreversible uses its own range fmax/kc."))
+		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32); linear_irreversible and young_laplace_table use their own range (fmax/kc, the exact rupture). Append +pitois (e.g. willett+pitois) for the dynamic rupture distance S_rup (1 + sqrt(|v1 - v2| eta/gamma)) (Pitois et al. 2001, Elskamp2018 eq. 33) on top of the static rule (or the model's own range); pitois alone means willett+pitois. +pitois needs eta > 0. Beyond the static distance the model's formula is continued (floored at 0; young_laplace_table keeps its force at the static rupture distance). Must be equal on both materials."))
 		((bool, forceInContact, false, Attr::triggerPostLoad, "True: the bridge force at contact F(0) also acts during overlap (Richefeu2008, Roy); False: it is off during overlap (Gladkyy2014 eq. 4). Must be equal on both materials."))
 		((Real, linearFmax, 0, Attr::triggerPostLoad, "linear_irreversible: maximum adhesive force [N], (0, inf); 0 (with linearKc = 0) to calibrate from calibrateFrom."))
 		((Real, linearKc, 0, Attr::triggerPostLoad, "linear_irreversible: adhesive stiffness [N/m], (0, inf); 0 (with linearFmax = 0) to calibrate from calibrateFrom."))
 		((std::string, calibrateFrom, "willett_full", Attr::triggerPostLoad, "linear_irreversible: model whose maximum force and adhesive energy the linear law matches, per bridge (Roy section 4.2)."))
+		((Real, eta, 0, Attr::triggerPostLoad, "Dynamic viscosity of the liquid [Pa s], [0, 1e9]. 0 (the default): no viscous force is evaluated. > 0: a bridge adds the normal viscous force (viscousNormal) and Goldman's tangential force and moments (Elskamp2018 eq. 28, 29), in contact and separated. Two materials: arithmetic mean."))
+		((std::string, viscousNormal, "pitois", Attr::triggerPostLoad, "Normal viscous force with eta > 0: pitois (Pitois et al. 2000, Elskamp2018 eq. 26, finite bridge volume; the default) or adams_perchard (Elskamp2018 eq. 25). Must be equal on both materials."))
+		((Real, viscousSmin, 0.001, Attr::triggerPostLoad, "S_min / r* [-], [1e-12, 1]: the viscous forces are evaluated at the separation max(S, 0) + S_min, S_min = viscousSmin r*, r* = R1 R2/(R1 + R2) (R1 for a wall), so that they stay finite at contact (Elskamp2018 after eq. 29: 0.001). Must be equal on both materials."))
 		((bool, extrapolate, false, Attr::triggerPostLoad, "False: a bridge outside its model's validity domain (V*, contact angle, size ratio; yade_capillary.kernels.models()) is an error. True: the model is evaluated at the nearest point of its domain, stretched to the bridge's rupture distance and scaled by R cos(theta) (finite, non-negative, monotone where the model is). Must be equal on both materials.")),
 		createIndex(); lastGood = checked();
 	);
@@ -71,12 +77,15 @@ REGISTER_SERIALIZABLE(PendularMat);
 
 class PendularPhys : public NormShearPhys {
 public:
-	capillary::Bridge bridge {}; // per-bridge invariants, rebuilt from the attributes by postLoad
+	capillary::Bridge        bridge {};  // per-bridge invariants, rebuilt from the attributes by postLoad
+	capillary::ViscousBridge viscous {}; // likewise, for eta > 0
+	bool                     viscid = false; // a bridge with eta > 0: the law evaluates the viscous terms
 	void              postLoad(PendularPhys&);
 	void              buildBridge();
 	std::string       modelName() const;
 	std::string       ruptureName() const;
 	std::string       calibrateName() const;
+	std::string       viscousName() const;
 	bool              extrapolated() const { return bridge.extrapolated(); }
 	virtual ~PendularPhys() = default;
 	// clang-format off
@@ -90,8 +99,9 @@ public:
 		((bool, wet, false, Attr::readonly, "Both materials are wet: a bridge forms at contact."))
 		((bool, active, false, Attr::readonly, "A liquid bridge exists (formed at contact, not yet broken)."))
 		((bool, forceInContact, false, Attr::readonly, "F(0) acts during overlap."))
-		((Real, R1, 0, Attr::readonly, "Radius of body 1 [m] (inf for a wall or facet)."))
-		((Real, R2, 0, Attr::readonly, "Radius of body 2 [m] (inf for a wall or facet)."))
+		((Real, R1, 0, Attr::readonly, "Radius of the (first) sphere of the bridge [m]: body 1, or body 2 if body 1 is a wall or facet (swapped)."))
+		((Real, R2, 0, Attr::readonly, "Radius of the other body [m] (inf for a wall or facet)."))
+		((bool, swapped, false, Attr::readonly, "Body 1 is the wall or facet: R1 is the radius of body 2."))
 		((Real, Vb, 0, Attr::readonly, "Liquid bridge volume [m^3]."))
 		((Real, gamma, 0, Attr::readonly, "Surface tension [N/m]."))
 		((Real, theta1, 0, Attr::readonly, "Contact angle on body 1 [rad]."))
@@ -105,12 +115,20 @@ public:
 		((Real, R, 0, Attr::readonly, "Effective radius 2R1R2/(R1+R2) [m]; 2R for a wall (Derjaguin sphere-plane limit)."))
 		((Real, sCrit, 0, Attr::readonly, "Rupture distance: largest surface gap of the bridge [m]."))
 		((Real, force0, 0, Attr::readonly, "Capillary force at contact F(0) [N]."))
-		((Real, Fcap, 0, Attr::readonly, "Capillary force of the last step [N], positive = attraction.")),
+		((Real, Fcap, 0, Attr::readonly, "Capillary force of the last step [N], positive = attraction."))
+		((Real, eta, 0, Attr::readonly, "Liquid viscosity [Pa s] (0: no viscous force)."))
+		((int, viscousIndex, -1, Attr::readonly, "Index of the normal viscous law in yade_capillary.kernels.VISCOUS_NAMES (-1: no viscous force); its name is ``viscousNormal``."))
+		((Real, viscousSmin, 0, Attr::readonly, "S_min / r* of the viscous forces [-]."))
+		((bool, dynamicRupture, false, Attr::readonly, "The rupture distance is stretched by Pitois' rule (Elskamp2018 eq. 33)."))
+		((Real, Fvisc, 0, Attr::readonly, "Normal viscous force of the last step [N], positive = attraction (separating); included in normalForce."))
+		((Vector3r, viscousShear, Vector3r::Zero(), Attr::readonly, "Tangential viscous force on body 2 of the last step [N] (Elskamp2018 eq. 28, 29); not part of shearForce, which is the tangential spring."))
+		((Real, sRupture, 0, Attr::readonly, "Rupture distance of the last step [m]: sCrit, stretched by the dynamic rule if dynamicRupture.")),
 		createIndex();,
 		.add_property("model", &PendularPhys::modelName, "Name of the capillary model of this bridge ('' without bridge).")
 		.add_property("rupture", &PendularPhys::ruptureName, "Name of the rupture rule of this bridge.")
 		.add_property("calibrateFrom", &PendularPhys::calibrateName, "linear_irreversible: name of the reference model of the calibration.")
 		.add_property("extrapolated", &PendularPhys::extrapolated, "The bridge lies outside its model's domain and is extrapolated.")
+		.add_property("viscousNormal", &PendularPhys::viscousName, "Name of the normal viscous law ('' without viscosity).")
 	);
 	// clang-format on
 	REGISTER_CLASS_INDEX(PendularPhys, NormShearPhys);
@@ -220,6 +238,8 @@ public:
 	// rotate(v): ScGeom::rotate, the shear force carried from the last contact plane to this one.
 	template <class Rotate, class Sink>
 	bool apply(const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink);
+	// Breaks the bridge (totals if owned) and returns false: the interaction is to be reset.
+	bool breakBridge(PendularPhys& phys, bool owned);
 	FUNCTOR2D(ScGeom, PendularPhys);
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
@@ -240,6 +260,50 @@ public:
 };
 REGISTER_SERIALIZABLE(Law2_ScGeom_PendularPhys_Bridge);
 
+// The viscous terms of a bridge with eta > 0 at the surface separation S (Elskamp2018 eq. 25-29),
+// through the bridge's capillary::ViscousBridge: sets phys.Fvisc, phys.viscousShear and
+// phys.sRupture (eq. 33 if dynamicRupture) and returns the moments on bodies 1 and 2.
+// Velocities: the centres of the spheres (Elskamp2018 after eq. 25), a wall's or facet's velocity
+// at the contact point, which has no radius to turn its rotation into a surface velocity (its arm
+// is 0 in omega_r = r1 omega1 + r2 omega2 and in the moments r n x F).
+struct PendularViscousMoments {
+	Vector3r torque1, torque2;
+};
+inline PendularViscousMoments pendularViscous(const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real S)
+{
+	const bool     wall1 = phys.swapped, wall2 = !phys.swapped && math::isinf(phys.R2);
+	const Real     arm1 = wall1 ? 0 : phys.R1, arm2 = wall1 ? phys.R1 : (wall2 ? 0 : phys.R2);
+	Vector3r       v1 = k.vel1, v2 = k.vel2 + k.shiftVel;
+	if (wall1) v1 += k.angVel1.cross(geom.contactPoint - k.pos1);
+	if (wall2) v2 += k.angVel2.cross(geom.contactPoint - k.pos2 - k.shift2);
+	const Vector3r& n    = geom.normal; // from body 1 to body 2
+	const Vector3r  vRel = v1 - v2;
+	const Real      vn   = n.dot(vRel); // > 0: approaching
+	Real            ct, cr;
+	bool            near;
+	phys.viscous.tangential_coefficients(S, ct, cr, near);
+	const Vector3r force1 = capillary::tangential_viscous_force(ct, cr, n, Vector3r(vRel - vn * n), Vector3r(arm1 * k.angVel1 + arm2 * k.angVel2));
+	phys.Fvisc            = -phys.viscous.normal_coefficient(S) * vn; // F1 = -c v_n n, so body 2 gets -Fvisc n
+	phys.viscousShear     = -force1;
+	phys.sRupture         = phys.dynamicRupture ? phys.bridge.rupture * phys.viscous.rupture_stretch(vRel.norm()) : phys.bridge.rupture;
+	const Vector3r nxF1   = n.cross(force1); // M1 = r1 n x F1, M2 = r2 n x F1 (Elskamp2018 after eq. 6)
+	return { arm1 * nxF1, arm2 * nxF1 };
+}
+
+inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(PendularPhys& phys, bool owned)
+{
+	phys.active       = false;
+	phys.Fcap         = 0;
+	phys.Fvisc        = 0;
+	phys.viscousShear = Vector3r::Zero();
+	if (owned) {
+		nBridges -= 1;
+		liquidVolume -= phys.Vb;
+		liquidReleased += phys.Vb;
+	}
+	return false;
+}
+
 template <class Rotate, class Sink>
 inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
         const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink)
@@ -254,20 +318,19 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 			return false;
 		}
 		const Real gap = -geom.penetrationDepth;
-		if (gap > phys.bridge.rupture) {
-			phys.active = false;
-			phys.Fcap   = 0;
-			if (k.owned) {
-				nBridges -= 1;
-				liquidVolume -= phys.Vb;
-				liquidReleased += phys.Vb;
-			}
-			return false;
+		if (!phys.viscid) {
+			// An inviscid separated bridge needs only the gap and the normal: no tangential work, no torque.
+			if (gap > phys.bridge.rupture) return breakBridge(phys, k.owned);
+			phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
+			phys.normalForce = -phys.Fcap * geom.normal;
+			sink.force(phys.normalForce);
+			return true;
 		}
-		// A separated bridge needs only the gap and the normal: no tangential work, no torque.
-		phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
-		phys.normalForce = -phys.Fcap * geom.normal;
-		sink.force(phys.normalForce);
+		const PendularViscousMoments m = pendularViscous(geom, phys, k, gap);
+		if (gap > phys.sRupture) return breakBridge(phys, k.owned);
+		phys.Fcap        = capillary::bridge_force_within(phys.bridge, gap, phys.sRupture);
+		phys.normalForce = -(phys.Fcap + phys.Fvisc) * geom.normal;
+		sink.forceTorque(phys.normalForce + phys.viscousShear, m.torque1, m.torque2);
 		return true;
 	}
 
@@ -284,7 +347,8 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	}
 	const Vector3r c1x    = geom.contactPoint - k.pos1;
 	const Vector3r c2x    = geom.contactPoint - k.pos2 - k.shift2;
-	const Vector3r relVel = (k.vel1 + k.angVel1.cross(c1x)) - (k.vel2 + k.angVel2.cross(c2x)) + k.shiftVel;
+	// Body 2's periodic image moves with vel2 + shiftVel (ScGeom::getIncidentVel).
+	const Vector3r relVel = (k.vel1 + k.angVel1.cross(c1x)) - (k.vel2 + k.angVel2.cross(c2x)) - k.shiftVel;
 	const Real     vn     = geom.normal.dot(relVel); // > 0: approaching
 
 	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
@@ -303,7 +367,14 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		// spring and dashpot would be cut to zero anyway; skip them.
 		shear = Vector3r::Zero();
 	}
-	phys.Fcap        = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
+	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
+	if (phys.viscid && phys.active) { // the bridge's viscous forces also act in contact, at S_eff = S_min
+		const PendularViscousMoments m = pendularViscous(geom, phys, k, -geom.penetrationDepth);
+		phys.normalForce               = (fn - phys.Fcap - phys.Fvisc) * geom.normal;
+		const Vector3r f               = phys.normalForce + shear + shearVisc; // acts at the contact point
+		sink.forceTorque(f + phys.viscousShear, m.torque1 - c1x.cross(f), m.torque2 + c2x.cross(f));
+		return true;
+	}
 	phys.normalForce = (fn - phys.Fcap) * geom.normal;
 	const Vector3r f = phys.normalForce + shear + shearVisc;
 	sink.forceTorque(f, -c1x.cross(f), c2x.cross(f));

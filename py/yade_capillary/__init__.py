@@ -2,11 +2,12 @@
 
 Modules:
     kernels  -- the pure capillary bridge models (C++, pybind11): force, bridge, rupture_distance
-    cases    -- case tables (Gladkyy & Schwarze 2014, Table 1)
+    cases    -- case tables (Gladkyy & Schwarze 2014, Table 1; Elskamp & Kruggel-Emden 2018, Fig. 5a, 5b)
     scene    -- helpers that build YADE engine lists for the plugin's functors (inside yade only)
-    twosphere -- the two-sphere pull-off scenario (inside yade only) and its summary
+    twosphere -- two-sphere and sphere-wall pull-offs, also viscous at constant speed (inside yade only)
     plots    -- matplotlib figures (PNG)
     accuracy -- error and cost of every model against the Young-Laplace solver
+    mixedangles -- unequal contact angles: mean of cosines vs cosine of the mean angle, against the solver
     benchmark -- side-by-side speed of our Law2 and YADE's built-in capillary law (inside yade)
     cg       -- axisymmetric coarse-graining (density, angular velocity, stress) for rotating flows
     fits     -- erf shear-band fit and tau = mu p + c fit with standard errors

@@ -73,17 +73,23 @@ def builtin_run(capillar_type, n, steps, seed, vel):
                                    [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
 
 
-def ours_run(model, loop, friction, n, steps, seed, vel):
+def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett"):
     """Our law on the benchmark scene, in `loop` ("standard": YADE's InteractionLoop, "fused":
-    PendularLoop); friction: contact friction angle [rad] (0: no tangential spring)."""
-    return measure("yade-capillary %s, %s, friction %g" % (model, "PendularLoop" if loop == "fused" else "Law2 in InteractionLoop", friction),
-                   PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model),
-                   loop, n, steps, seed, vel)
+    PendularLoop); friction: contact friction angle [rad] (0: no tangential spring); eta: liquid
+    viscosity [Pa s] (0: no viscous term); rupture: rupture rule (e.g. "willett+pitois")."""
+    label = "yade-capillary %s, %s, friction %g" % (model, "PendularLoop" if loop == "fused" else "Law2 in InteractionLoop", friction)
+    if eta > 0:
+        label += ", eta %g Pa s%s" % (eta, ", rupture %s" % rupture if rupture != "willett" else "")
+    return measure(label, PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model,
+                                      eta=eta, rupture=rupture), loop, n, steps, seed, vel)
 
 
 def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
     """Measure, on identical scenes: YADE's built-in law (the baseline), its zero-force variant, our
-    Law2 in YADE's InteractionLoop, and PendularLoop frictionless and with friction 0.5 rad.
+    Law2 in YADE's InteractionLoop, PendularLoop frictionless and with friction 0.5 rad, and
+    PendularLoop frictionless with a viscous liquid (water, eta = 1 mPa s; Elskamp 2018 eq. 26, 28, 29),
+    with and without Pitois' dynamic rupture distance (eq. 33): the cost of the viscous terms against
+    the same scene with eta = 0, which evaluates none of them.
 
     The zero-force variant (CapillarType "None": the built-in law with the same bookkeeping and a
     capillary force of 0) is the floor of YADE's interaction loop, geometry and dispatch, which no
@@ -93,7 +99,9 @@ def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_m
     """
     variants = [lambda: builtin_run(builtin_model, n, steps, seed, vel), lambda: builtin_run("None", n, steps, seed, vel),
                 lambda: ours_run(model, "standard", 0.0, n, steps, seed, vel), lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel),
-                lambda: ours_run(model, "fused", 0.5, n, steps, seed, vel)]
+                lambda: ours_run(model, "fused", 0.5, n, steps, seed, vel),
+                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3),
+                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3, rupture="willett+pitois")]
     runs = [[] for _ in variants]
     for _ in range(repeats):
         for r, v in zip(runs, variants):

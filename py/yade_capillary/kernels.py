@@ -21,7 +21,7 @@ sphere-wall bridge. Bad input raises ValueError naming the parameter and its all
 ``YoungLaplaceBridge(R1, R2, volume, theta1)`` is the exact solver: ``.rupture_gap`` and
 ``.solve(gap, gamma)`` (force by the neck and contact-line methods, filling angles, pressure).
 
-Viscous bridge forces (Elskamp 2018 eq. 25-29, 33; not used by the YADE layer yet):
+Viscous bridge forces (Elskamp 2018 eq. 25-29, 33; PendularMat.eta in YADE):
 ``viscous_normal_force(law, S, v_n, R1, R2, eta, volume)`` (laws ``VISCOUS_NAMES``),
 ``viscous_tangential(S, n, v_rel, R1, R2, eta, omega1, omega2)`` and
 ``dynamic_rupture_distance(static, v_rel, eta, gamma)``.

@@ -1,7 +1,8 @@
 // The contract every capillary model passes, derived from the model table (models()): over its
 // declared domain, for every rupture rule, unequal spheres and walls: finite, non-negative, zero
 // beyond rupture, continuous up to rupture, monotone where the table says so, symmetric under
-// swapping the particles, and F proportional to gamma. Outside the domain a bridge is refused
+// swapping the particles, and F proportional to gamma; continued beyond rupture (the dynamic rupture
+// rule), finite and non-negative. Outside the domain a bridge is refused
 // with an error naming the variable and the model; with extrapolate it is built and keeps the
 // same contract, and inside the domain extrapolate changes nothing.
 #include "models.hpp"
@@ -78,6 +79,18 @@ void holds(const ModelInfo& m, const BridgeSpec& spec, bool swap_check = true)
 	EXPECT_EQ(bridge_force(b, 10 * b.rupture), 0.0);
 	EXPECT_EQ(bridge_force(b, std::nan("")), 0.0);
 	EXPECT_EQ(bridge_force(b, -1e-6), b.force0);
+	// The dynamic rupture rule (Elskamp2018 eq. 33) keeps a bridge beyond its static rupture
+	// distance: the continued force is finite and non-negative up to 1000 times that distance
+	// (a capillary number of 1e6), unchanged up to rupture, and zero beyond the stretched range.
+	for (double stretch : { 1.001, 1.5, 3.0, 10.0, 1000.0 }) {
+		const double range = stretch * b.rupture;
+		for (int i = 0; i <= 50; ++i) {
+			const double a = range * i / 50, F = bridge_force_within(b, a, range);
+			ASSERT_TRUE(std::isfinite(F) && F >= 0) << "a=" << a << " range=" << range << " F=" << F;
+			if (a <= b.rupture) ASSERT_EQ(F, bridge_force(b, a)) << "a=" << a;
+		}
+		EXPECT_EQ(bridge_force_within(b, range * (1 + 1e-12), range), 0.0);
+	}
 	// Scaling: F proportional to gamma at fixed geometry.
 	BridgeSpec twice = spec;
 	twice.gamma *= 2;

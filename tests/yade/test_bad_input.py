@@ -27,7 +27,10 @@ bad_values = [
     ("tc", 0.0, ["tc", "(0, inf)"]), ("tc", -1e-4, ["tc"]), ("kn", -1.0, ["kn"]),
     ("frictionAngle", 2.0, ["frictionAngle"]),
     ("model", "Willett_numeric", ["model", "willett_full", "rabinovich_lambert"]),
-    ("rupture", "pitois", ["rupture", "lian", "willett_elskamp"]),
+    ("rupture", "bogus", ["rupture", "lian", "willett_elskamp", "+pitois"]),
+    ("rupture", "pitois", ["rupture", "eta > 0"]),  # the dynamic rule needs a viscosity
+    ("eta", -0.1, ["eta", "allowed range"]), ("eta", nan, ["eta"]),
+    ("viscousNormal", "stokes", ["viscousNormal", "pitois", "adams_perchard"]), ("viscousSmin", 2.0, ["viscousSmin"]),
     ("calibrateFrom", "linear_irreversible", ["calibrateFrom"]),
 ]
 for name, value, words in bad_values:
