@@ -6,7 +6,7 @@
 import math
 
 from yade import O
-from yade.utils import sphere, wall
+from yade.utils import facet, sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary import kernels
@@ -116,6 +116,41 @@ for loop in ("fused", "standard"):
     close_vec(O.forces.f(1), expect, scale, loop + " wall: force on the sphere", "kernels with R2 = inf")
     close_vec(O.forces.t(1), t["moment1"], R * scale, loop + " wall: moment on the sphere", "R1 n x F1, kernels with R2 = inf")
     ck.true(O.interactions[0, 1].phys.swapped, loop + " wall: body 0 is the wall, so the phys is marked swapped")
+
+# 2b. Sphere-facet, the facet moving and spinning (a wall's motion at the contact point drives the
+#     bridge): the kernels with v_rel = v_sphere - (v_facet + omega_facet x (contact point - facet centre)).
+for loop in ("fused", "standard"):
+    R = 4e-3
+    O.reset()
+    O.dt = 1e-7
+    m = O.materials.append(material())
+    O.bodies.append(facet(((0, -0.02, -0.02), (0, 0.02, -0.02), (0, 0, 0.03)), material=m, fixed=True))
+    O.bodies.append(sphere((R - 1e-7, 0, 0), R, material=m, fixed=True))  # overlapping: the bridge forms
+    O.engines = engines(loop=loop)
+    O.step()
+    S = 1e-4
+    vs, ws, vf, wf = (0.003, 0.002, -0.001), (0.5, 2.0, -1.0), (0.001, -0.002, 0.004), (3.0, 1.0, -2.0)
+    O.bodies[1].state.pos = (R + S, 0, 0)
+    O.bodies[1].state.vel, O.bodies[1].state.angVel = vs, ws
+    O.bodies[0].state.vel, O.bodies[0].state.angVel = vf, wf
+    O.step()
+    I = O.interactions[0, 1]
+    # YADE's contact point of the step, and the facet centre at the start of the step (NewtonIntegrator
+    # moved it after the law).
+    cp, fc = I.geom.contactPoint, O.bodies[0].state.pos
+    arm = sub(cp, [fc[k] - vf[k] * O.dt for k in range(3)])
+    vwall = [vf[k] + (wf[(k + 1) % 3] * arm[(k + 2) % 3] - wf[(k + 2) % 3] * arm[(k + 1) % 3]) for k in range(3)]
+    vrel = sub(vs, vwall)
+    nn = [-1.0, 0.0, 0.0]
+    vn = sum(a * b for a, b in zip(vrel, nn))
+    inf = float("inf")
+    fcap = kernels.force("rabinovich", S, R, inf, V, GAMMA, THETA)
+    fn = kernels.viscous_normal_force("pitois", S, vn, R, inf, ETA, V)
+    t = kernels.viscous_tangential(S, nn, vrel, R, inf, ETA, ws, (0, 0, 0))
+    expect = [(fcap + fn) * nn[k] + t["force"][k] for k in range(3)]
+    scale = abs(fcap) + abs(fn)
+    close_vec(O.forces.f(1), expect, scale, loop + " moving facet: force on the sphere", "kernels, v_rel at the contact point")
+    close_vec(O.forces.t(1), t["moment1"], R * scale, loop + " moving facet: moment on the sphere", "R1 n x F1")
 
 # 3. Pull-off at constant speed (Elskamp Fig. 5b setup): F = F_cap(S) + c_n(S) v at every step,
 #    and the bridge breaks at the dynamic rupture distance (eq. 33), beyond which the force is 0.
