@@ -156,11 +156,11 @@ namespace {
 	{
 		if (heavy(b1) && heavy(b2)) return std::numeric_limits<Real>::infinity();
 		Real cn = p.cn, cs = p.cs;
-		if (p.viscid) {
+		if (p.viscous) {
 			Real ct, cr;
 			bool near;
-			p.viscous.tangential_coefficients(0, ct, cr, near);
-			cn += p.viscous.normal_coefficient(0);
+			p.viscous->tangential_coefficients(0, ct, cr, near);
+			cn += p.viscous->normal_coefficient(0);
 			cs += ct + cr;
 		}
 		return math::min(oscillatorLimit(p.kn, cn, effectiveMass(b1, b2)), oscillatorLimit(p.ks, cs, tangentialMass(b1, b2)));
@@ -398,9 +398,9 @@ void PendularPhys::buildBridge()
 	sCrit    = bridge.rupture;
 	sRupture = bridge.rupture;
 	force0   = bridge.force0;
-	viscid   = eta > 0;
-	if (viscid)
-		viscous = capillary::make_viscous(capillary::NormalViscous(viscousIndex), R1, R2, eta, Vb, dynamicRupture ? gamma : 0, viscousSmin);
+	viscous.reset();
+	if (eta > 0)
+		viscous = std::make_shared<const capillary::ViscousBridge>(capillary::make_viscous(capillary::NormalViscous(viscousIndex), R1, R2, eta, Vb, dynamicRupture ? gamma : 0, viscousSmin));
 }
 
 void PendularPhys::postLoad(PendularPhys&)
@@ -430,7 +430,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1
 		setLiquid(phys, m1, m2, body1, body2);
 	} catch (const std::exception& e) {
 		phys->wet    = false; // the bridge is refused, the contact law stays
-		phys->viscid = false;
+		phys->viscous.reset();
 		report(e.what(), *I);
 	}
 	const Real                        dt = pairCriticalDt(*phys, *body1, *body2);

@@ -9,6 +9,7 @@
 #include "viscous.hpp"
 
 #include <limits>
+#include <memory>
 #include <mutex>
 
 namespace yade {
@@ -77,9 +78,9 @@ REGISTER_SERIALIZABLE(PendularMat);
 
 class PendularPhys : public NormShearPhys {
 public:
-	capillary::Bridge        bridge {};  // per-bridge invariants, rebuilt from the attributes by postLoad
-	capillary::ViscousBridge viscous {}; // likewise, for eta > 0
-	bool                     viscid = false; // a bridge with eta > 0: the law evaluates the viscous terms
+	capillary::Bridge bridge {}; // per-bridge invariants, rebuilt from the attributes by postLoad
+	// Likewise for eta > 0 (null otherwise: an inviscid bridge carries a pointer, not the invariants).
+	std::shared_ptr<const capillary::ViscousBridge> viscous;
 	void              postLoad(PendularPhys&);
 	void              buildBridge();
 	std::string       modelName() const;
@@ -101,7 +102,6 @@ public:
 		((bool, forceInContact, false, Attr::readonly, "F(0) acts during overlap."))
 		((Real, R1, 0, Attr::readonly, "Radius of the (first) sphere of the bridge [m]: body 1, or body 2 if body 1 is a wall or facet (swapped)."))
 		((Real, R2, 0, Attr::readonly, "Radius of the other body [m] (inf for a wall or facet)."))
-		((bool, swapped, false, Attr::readonly, "Body 1 is the wall or facet: R1 is the radius of body 2."))
 		((Real, Vb, 0, Attr::readonly, "Liquid bridge volume [m^3]."))
 		((Real, gamma, 0, Attr::readonly, "Surface tension [N/m]."))
 		((Real, theta1, 0, Attr::readonly, "Contact angle on body 1 [rad]."))
@@ -117,9 +117,10 @@ public:
 		((Real, force0, 0, Attr::readonly, "Capillary force at contact F(0) [N]."))
 		((Real, Fcap, 0, Attr::readonly, "Capillary force of the last step [N], positive = attraction."))
 		((Real, eta, 0, Attr::readonly, "Liquid viscosity [Pa s] (0: no viscous force)."))
-		((int, viscousIndex, -1, Attr::readonly, "Index of the normal viscous law in yade_capillary.kernels.VISCOUS_NAMES (-1: no viscous force); its name is ``viscousNormal``."))
 		((Real, viscousSmin, 0, Attr::readonly, "S_min / r* of the viscous forces [-]."))
+		((int, viscousIndex, -1, Attr::readonly, "Index of the normal viscous law in yade_capillary.kernels.VISCOUS_NAMES (-1: no viscous force); its name is ``viscousNormal``."))
 		((bool, dynamicRupture, false, Attr::readonly, "The rupture distance is stretched by Pitois' rule (Elskamp2018 eq. 33)."))
+		((bool, swapped, false, Attr::readonly, "Body 1 is the wall or facet: R1 is the radius of body 2."))
 		((Real, Fvisc, 0, Attr::readonly, "Normal viscous force of the last step [N], positive = attraction (separating); included in normalForce."))
 		((Vector3r, viscousShear, Vector3r::Zero(), Attr::readonly, "Tangential viscous force on body 2 of the last step [N] (Elskamp2018 eq. 28, 29); not part of shearForce, which is the tangential spring."))
 		((Real, sRupture, 0, Attr::readonly, "Rupture distance of the last step [m]: sCrit, stretched by the dynamic rule if dynamicRupture.")),
@@ -281,11 +282,11 @@ inline PendularViscousMoments pendularViscous(const ScGeom& geom, PendularPhys& 
 	const Real      vn   = n.dot(vRel); // > 0: approaching
 	Real            ct, cr;
 	bool            near;
-	phys.viscous.tangential_coefficients(S, ct, cr, near);
+	phys.viscous->tangential_coefficients(S, ct, cr, near);
 	const Vector3r force1 = capillary::tangential_viscous_force(ct, cr, n, Vector3r(vRel - vn * n), Vector3r(arm1 * k.angVel1 + arm2 * k.angVel2));
-	phys.Fvisc            = -phys.viscous.normal_coefficient(S) * vn; // F1 = -c v_n n, so body 2 gets -Fvisc n
+	phys.Fvisc            = -phys.viscous->normal_coefficient(S) * vn; // F1 = -c v_n n, so body 2 gets -Fvisc n
 	phys.viscousShear     = -force1;
-	phys.sRupture         = phys.dynamicRupture ? phys.bridge.rupture * phys.viscous.rupture_stretch(vRel.norm()) : phys.bridge.rupture;
+	phys.sRupture         = phys.dynamicRupture ? phys.bridge.rupture * phys.viscous->rupture_stretch(vRel.norm()) : phys.bridge.rupture;
 	const Vector3r nxF1   = n.cross(force1); // M1 = r1 n x F1, M2 = r2 n x F1 (Elskamp2018 after eq. 6)
 	return { arm1 * nxF1, arm2 * nxF1 };
 }
@@ -318,7 +319,7 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 			return false;
 		}
 		const Real gap = -geom.penetrationDepth;
-		if (!phys.viscid) {
+		if (!phys.viscous) {
 			// An inviscid separated bridge needs only the gap and the normal: no tangential work, no torque.
 			if (gap > phys.bridge.rupture) return breakBridge(phys, k.owned);
 			phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
@@ -368,7 +369,7 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		shear = Vector3r::Zero();
 	}
 	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
-	if (phys.viscid && phys.active) { // the bridge's viscous forces also act in contact, at S_eff = S_min
+	if (phys.viscous && phys.active) { // the bridge's viscous forces also act in contact, at S_eff = S_min
 		const PendularViscousMoments m = pendularViscous(geom, phys, k, -geom.penetrationDepth);
 		phys.normalForce               = (fn - phys.Fcap - phys.Fvisc) * geom.normal;
 		const Vector3r f               = phys.normalForce + shear + shearVisc; // acts at the contact point

@@ -184,6 +184,20 @@ for speed in (1e-3, 1e-2):
     ck.true(dyn > static * (1 + math.sqrt(speed * ETA / GAMMA)) * (1 - 1e-12) and last_gap > static,
             "v=%g: the bridge outlives its static rupture distance" % speed)
 
+# 3b. O.save/O.load of a live viscous bridge with the dynamic rule: the invariants are rebuilt, the
+#     reloaded run gives the same forces as the uninterrupted one.
+pair(R, R, material(rupture="willett+pitois"))
+O.dt = 2e-4
+O.bodies[1].state.vel, O.bodies[1].state.angVel = (0.01, 0.002, 0), (0, 0, 3.0)
+O.run(100, True)
+O.saveTmp("viscous")
+O.run(20, True)
+ref = (tuple(O.forces.f(0)), tuple(O.forces.t(0)), O.interactions[0, 1].phys.sRupture)
+O.loadTmp("viscous")
+O.run(20, True)
+got = (tuple(O.forces.f(0)), tuple(O.forces.t(0)), O.interactions[0, 1].phys.sRupture)
+ck.true(got == ref and ref[2] > static, "O.save/O.load mid-pull: identical force, moment and dynamic rupture distance (%s)" % (got,))
+
 # 4. eta = 0: nothing viscous is evaluated; the forces are those of the capillary bridge alone.
 pair(R1, R2, material(eta=0))
 O.bodies[1].state.pos = [(R1 + R2 + 1e-4) * c for c in n]
