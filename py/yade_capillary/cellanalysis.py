@@ -89,14 +89,8 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
 
     yield_fit, yield_threshold = yield_fit_of(band), yield_fit_of(band_threshold)
 
-    # torque through the cylinder above the split, from the CG stress: 2 pi Rs^2 * integral sigma_r_theta dz
-    # over every height the smoothed stress reaches (from 3 kernel widths below the bottom, where the
-    # bottom contacts are smeared to, to 3 above the highest particle)
-    w = grid.w
-    line = cg.Grid([cfg["Rs"]], np.arange(-3 * w, max(d["x"][:, 2].max() for d in data) + 3 * w, w / 4), w)
-    s_line = sum(cg.contact_stress(line, d["xP"], d["xI"], d["F"]) + cg.kinetic_stress(line, d["x"], d["v"], d["m"], omega_at)
-                 for d in data) / len(data)
-    torque_cg = float(2 * np.pi * cfg["Rs"] ** 2 * np.trapz(0.5 * (s_line[0, 1, 0] + s_line[1, 0, 0]), line.z))
+    torque_cg = cylinder_flux(data, cfg["Rs"], grid.w, omega_at)
+    closure = torque_closure(data, cfg, grid.w, omega_at)
 
     # contacts and mean force versus separation (Gladkyy eq. 15), wet-contact density in and out of the band
     gaps = np.concatenate([d["gap"] for d in data])
@@ -121,7 +115,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
         "c_Pa_threshold": yield_threshold.get("c_Pa"), "c_err_Pa_threshold": yield_threshold.get("c_err_Pa"),
         "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
         "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg,
-        "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out,
+        "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out, "torque_closure": closure,
         "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": len(data), "conventions": CONVENTIONS,
     }
     with open(os.path.join(rundir, "fits.json"), "w") as f:
@@ -132,6 +126,84 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
                delimiter=",", header=header, comments="")
     _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg)
     _contact_plot(rundir, centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan))
+    return out
+
+
+def cylinder_flux(data, r0, w, omega_at):
+    """Torque through the cylinder r = r0 [N m], from the CG stress of the snapshots `data`:
+    2 pi r0^2 times the integral of the symmetrised sigma_r_theta over z, at every height the
+    smoothed stress reaches (from 3 kernel widths w below the bottom, where the bottom contacts are
+    smeared to, to 3 above the highest particle); contact and kinetic parts, averaged over the
+    snapshots."""
+    line = cg.Grid([r0], np.arange(-3 * w, max(d["x"][:, 2].max() for d in data) + 3 * w, w / 4), w)
+    s_line = sum(cg.contact_stress(line, d["xP"], d["xI"], d["F"]) + cg.kinetic_stress(line, d["x"], d["v"], d["m"], omega_at)
+                 for d in data) / len(data)
+    return float(2 * np.pi * r0 ** 2 * np.trapz(0.5 * (s_line[0, 1, 0] + s_line[1, 0, 0]), line.z))
+
+
+def crossing_torque(data, r0):
+    """Torque about the axis on everything inside the cylinder r = r0 from the contacts that cross
+    it [N m], counted contact by contact (no smoothing), averaged over the snapshots: a contact
+    between a flowing particle P and a partner I (a flowing particle, or the contact point of a wall
+    contact) crosses when exactly one of them lies inside; its force acts at the middle of the branch
+    (the contact point of a wall contact)."""
+    total = 0.0
+    for d in data:
+        xP, xI, F = d["xP"], d["xI"], d["F"]
+        if len(F) == 0:
+            continue
+        inP, inI = np.hypot(xP[:, 0], xP[:, 1]) < r0, np.hypot(xI[:, 0], xI[:, 1]) < r0
+        c = (xP + xI) / 2
+        tz = c[:, 0] * F[:, 1] - c[:, 1] * F[:, 0]  # torque of the force on P
+        total += tz[inP & ~inI].sum() - tz[~inP & inI].sum()
+    return total / len(data)
+
+
+def wall_contact_mask(d):
+    """Which contacts of snapshot d are with a wall sphere: their partner point xI is a contact point,
+    not the (exactly copied) position of a flowing sphere."""
+    flowing = {row.tobytes() for row in np.ascontiguousarray(d["x"])}
+    return np.array([row.tobytes() not in flowing for row in np.ascontiguousarray(d["xI"])], dtype=bool)
+
+
+def walls_inside(data, r0):
+    """Torque about the axis on the wall spheres inside the cylinder r0 [N m], averaged over the
+    snapshots, two ways: (by_contact) the torque of the wall contacts whose contact point lies at
+    r < r0 -- the walls as the boundary forces at their contact points, as the coarse-graining sees
+    them -- and (by_centre) the torque on the wall spheres with centres at r < r0 (static and
+    rotating), as measured on the bodies. They differ by the wall spheres that straddle r0."""
+    by_contact, by_centre = [], []
+    for d in data:
+        by_centre.append(d["static_Tz"][d["static_rz"][:, 0] < r0].sum() + d["rotating_Tz"][d["rotating_rz"][:, 0] < r0].sum())
+        wall = wall_contact_mask(d) if len(d["F"]) else np.zeros(0, bool)
+        c, F = d["xI"][wall], d["F"][wall]
+        inside = np.hypot(c[:, 0], c[:, 1]) < r0
+        by_contact.append(-(c[inside, 0] * F[inside, 1] - c[inside, 1] * F[inside, 0]).sum())  # F is on the flowing sphere
+    return float(np.mean(by_contact)), float(np.mean(by_centre))
+
+
+def torque_closure(data, cfg, w, omega_at, step_over_R=2.0):
+    """Torque balance of everything inside a cylinder r0 (issue: the CG stress must carry the
+    measured torque), for r0 from the inner wall to beyond the split in steps of `step_over_R` R.
+
+    In a steady state the torque through the cylinder equals the torque on the walls inside it:
+    the wall contacts with contact points at r < r0 (walls_inside, by_contact; the inner cylinder
+    and the bottom, static and, for r0 > Rs, rotating). The torque through it is evaluated counted
+    contact by contact (crossing_torque, exact up to the time derivative of the angular momentum
+    inside) and from the CG stress (cylinder_flux, sign: the torque on the inside is minus the flux)
+    with the analysis kernel width w and with w/4 (the flux of a smoothed stress is the smoothed
+    flux, which falls short where the flux has a kink: at Rs, and where the static bottom takes up
+    the torque). Returns a list of dicts, or [] for snapshots without the wall torques."""
+    if not all("static_Tz" in d for d in data):
+        return []
+    out = []
+    for r0 in np.arange(cfg["Ri"] + step_over_R * cfg["R"], cfg["Rs"] + 3 * cfg["R"], step_over_R * cfg["R"]):
+        measured, by_centre = walls_inside(data, r0)
+        row = {"r0_m": float(r0), "walls_inside_Nm": measured, "walls_centre_inside_Nm": by_centre, "crossing_Nm": crossing_torque(data, r0),
+               "cg_w_Nm": -cylinder_flux(data, r0, w, omega_at), "cg_w4_Nm": -cylinder_flux(data, r0, w / 4, omega_at)}
+        for k in ("crossing", "cg_w", "cg_w4"):
+            row[k + "_over_walls"] = row[k + "_Nm"] / measured if measured else None
+        out.append(row)
     return out
 
 

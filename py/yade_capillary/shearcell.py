@@ -261,9 +261,17 @@ def _torque_z(bid):
 
 
 def snapshot(path, info):
-    """Positions, velocities, masses of the flowing spheres, and every contact as (xP, xI or the
-    contact point for wall contacts, force on P) -- what the coarse-graining needs."""
+    """Positions, velocities, masses of the flowing spheres, every contact as (xP, xI or the
+    contact point for wall contacts, force on P) -- what the coarse-graining needs -- and, for the
+    torque balance, the centre (r, z) [m] and the torque about the axis [N m] of every static and
+    rotating wall sphere (static_rz, static_Tz, rotating_rz, rotating_Tz)."""
     from yade import O
+
+    walls = {}
+    for kind in ("static", "rotating"):
+        pos = np.array([O.bodies[i].state.pos for i in info[kind]])
+        walls[kind + "_rz"] = np.stack([np.hypot(pos[:, 0], pos[:, 1]), pos[:, 2]], axis=1)
+        walls[kind + "_Tz"] = np.array([_torque_z(i) for i in info[kind]])
 
     flowing = set(info["flowing"])
     ids = info["flowing"]
@@ -286,7 +294,7 @@ def snapshot(path, info):
         xI.append(O.bodies[other].state.pos if other in flowing else I.geom.contactPoint)
         F.append(f)
         gap.append(-I.geom.penetrationDepth)
-    np.savez_compressed(path, x=x, v=v, m=m, xP=np.array(xP), xI=np.array(xI), F=np.array(F), gap=np.array(gap), t=O.time)
+    np.savez_compressed(path, x=x, v=v, m=m, xP=np.array(xP), xI=np.array(xI), F=np.array(F), gap=np.array(gap), t=O.time, **walls)
 
 
 def summary(fit):
