@@ -88,6 +88,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
         return fits.fit_yield(p[sel], tau[sel]) if sel.sum() >= 3 else {"error": "fewer than 3 band points"}
 
     yield_fit, yield_threshold = yield_fit_of(band), yield_fit_of(band_threshold)
+    variants = fit_variants(sigma, gdot, away, gmin)
 
     torque_cg = cylinder_flux(data, cfg["Rs"], grid.w, omega_at)
     closure = torque_closure(data, cfg, grid.w, omega_at)
@@ -116,6 +117,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
         "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
         "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg,
         "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out, "torque_closure": closure,
+        "fit_variants": variants,
         "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": len(data), "conventions": CONVENTIONS,
     }
     with open(os.path.join(rundir, "fits.json"), "w") as f:
@@ -126,6 +128,47 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
                delimiter=",", header=header, comments="")
     _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg)
     _contact_plot(rundir, centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan))
+    return out
+
+
+def fit_variants(sigma, gdot, away, gamma_dot_min):
+    """mu and c of tau = mu p + c under each convention of the fit, applied to the same CG fields
+    (issue: separate the causes of the difference from Gladkyy): returns {name: fit dict}.
+
+    baseline: tau = sqrt(sigma_rtheta^2 + sigma_ztheta^2), p = tr(sigma)/3, band gamma_dot > 80 % of
+    its maximum per height (the analysis' own choice); tau_rtheta: tau = |sigma_rtheta|; p_zz: p =
+    sigma_zz; threshold: gamma_dot > gamma_dot_min (Gladkyy's 0.12 1/s, scaled with the period);
+    threshold_half_rate: the same threshold on gamma_dot / 2 (a strain-rate norm half of ours, the
+    other common convention); low_p / high_p: the baseline band split at its median pressure;
+    quadratic: tau = c + mu p + k p^2 over the baseline band (mu: the slope at p = 0, k_1_Pa the
+    curvature), to test whether tau(p) is curved at low p."""
+    s = 0.5 * (sigma + np.swapaxes(sigma, 0, 1))
+    p_tr, p_zz = (s[0, 0] + s[1, 1] + s[2, 2]) / 3, s[2, 2]
+    tau_full, tau_rt = np.hypot(s[0, 1], s[2, 1]), np.abs(s[0, 1])
+    peak = np.nanmax(np.where(away, gdot, 0), axis=0)[None, :]
+    band = away & (gdot > 0.8 * peak)
+    sel = {"baseline": band, "threshold": away & (gdot > gamma_dot_min), "threshold_half_rate": away & (gdot / 2 > gamma_dot_min)}
+
+    def fit(pp, tt, m):
+        m = m & np.isfinite(pp) & np.isfinite(tt)
+        if m.sum() < 4:
+            return {"error": "fewer than 4 band points", "points": int(m.sum())}
+        return dict(fits.fit_yield(pp[m], tt[m]), points=int(m.sum()), p_min_Pa=float(pp[m].min()), p_max_Pa=float(pp[m].max()))
+
+    out = {name: fit(p_tr, tau_full, m) for name, m in sel.items()}
+    out["tau_rtheta"] = fit(p_tr, tau_rt, band)
+    out["p_zz"] = fit(p_zz, tau_full, band)
+    if band.sum() >= 8:
+        med = np.median(p_tr[band])
+        out["low_p"], out["high_p"] = fit(p_tr, tau_full, band & (p_tr <= med)), fit(p_tr, tau_full, band & (p_tr > med))
+        pp, tt = p_tr[band], tau_full[band]
+        A = np.stack([np.ones_like(pp), pp, pp * pp], axis=1)
+        coef, *_ = np.linalg.lstsq(A, tt, rcond=None)
+        resid = tt - A @ coef
+        cov = (resid @ resid / max(len(pp) - 3, 1)) * np.linalg.inv(A.T @ A)
+        err = np.sqrt(np.diag(cov))
+        out["quadratic"] = {"c_Pa": float(coef[0]), "c_err_Pa": float(err[0]), "mu": float(coef[1]), "mu_err": float(err[1]),
+                            "k_1_Pa": float(coef[2]), "k_err_1_Pa": float(err[2]), "points": int(len(pp))}
     return out
 
 
