@@ -153,7 +153,10 @@ def fit_variants(sigma, gdot, away, gamma_dot_min):
         m = m & np.isfinite(pp) & np.isfinite(tt)
         if m.sum() < 4:
             return {"error": "fewer than 4 band points", "points": int(m.sum())}
-        return dict(fits.fit_yield(pp[m], tt[m]), points=int(m.sum()), p_min_Pa=float(pp[m].min()), p_max_Pa=float(pp[m].max()))
+        try:
+            return dict(fits.fit_yield(pp[m], tt[m]), points=int(m.sum()), p_min_Pa=float(pp[m].min()), p_max_Pa=float(pp[m].max()))
+        except (ValueError, np.linalg.LinAlgError) as e:
+            return {"error": str(e), "points": int(m.sum())}
 
     out = {name: fit(p_tr, tau_full, m) for name, m in sel.items()}
     out["tau_rtheta"] = fit(p_tr, tau_rt, band)
@@ -165,8 +168,8 @@ def fit_variants(sigma, gdot, away, gamma_dot_min):
         A = np.stack([np.ones_like(pp), pp, pp * pp], axis=1)
         coef, *_ = np.linalg.lstsq(A, tt, rcond=None)
         resid = tt - A @ coef
-        cov = (resid @ resid / max(len(pp) - 3, 1)) * np.linalg.inv(A.T @ A)
-        err = np.sqrt(np.diag(cov))
+        cov = (resid @ resid / max(len(pp) - 3, 1)) * np.linalg.pinv(A.T @ A)
+        err = np.sqrt(np.abs(np.diag(cov)))
         out["quadratic"] = {"c_Pa": float(coef[0]), "c_err_Pa": float(err[0]), "mu": float(coef[1]), "mu_err": float(err[1]),
                             "k_1_Pa": float(coef[2]), "k_err_1_Pa": float(err[2]), "points": int(len(pp))}
     return out
