@@ -298,9 +298,10 @@ def snapshot(path, info):
 
 
 def summary(fit):
-    """The regression quantities of a fits.json: mu, c [Pa], Rc [m] (mean over the fitted heights)."""
+    """The regression quantities of a fits.json: mu, c [Pa], Rc [m] (mean over the fitted heights) and
+    the magnitude of the torque on the rotating walls [N m] (mean of the second half of the run)."""
     rc = [r for r in fit["Rc_m"] if r is not None]
-    return {"mu": fit["mu"], "c_Pa": fit["c_Pa"], "Rc_m": float(np.mean(rc)) if rc else None}
+    return {"mu": fit["mu"], "c_Pa": fit["c_Pa"], "Rc_m": float(np.mean(rc)) if rc else None, "torque_Nm": abs(fit["torque_Nm"])}
 
 
 # Gladkyy & Schwarze 2014, section 4.2: tau = mu p + c in the band (gamma_dot > 0.12 1/s), all models.

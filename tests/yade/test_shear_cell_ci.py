@@ -1,7 +1,10 @@
 # CI regression of the split-bottom shear cell (ci configuration, seed 1, every liquid case):
-# mu, c and Rc against the references of scripts/shear_cell_reference.py within 4 seed-to-seed
-# standard deviations, and the expected physics (Gladkyy 2014 section 4.2): dry cohesion
-# consistent with zero, cohesion growing with the liquid volume, band centre moving inwards.
+# mu, c, Rc and the torque against the references of scripts/shear_cell_reference.py within 4
+# seed-to-seed standard deviations, and the expected physics (Gladkyy 2014 section 4.2): dry
+# cohesion consistent with zero, cohesion growing with the liquid volume, band centre moving
+# inwards, and each liquid content told apart from dry: the torque on the rotating walls (which
+# rises with the liquid content, Gladkyy Fig. 8) differs from the dry one by at least 3 standard
+# errors, the standard error of one run being its seed-to-seed scatter.
 # In this small cell the cohesion at 13.6 nl is within the seed scatter of the dry one (it was
 # larger for 2 of 3 seeds), so "wet c > dry c" is asserted with 74.2 nl, where it held for every
 # seed; 13.6 nl enters the volume ordering through c(74.2 nl) > c(13.6 nl).
@@ -37,4 +40,8 @@ ck.true(got["wet74.2nl"]["c_Pa"] > got["dry"]["c_Pa"], "c(74.2 nl) > c(dry)")
 ck.true(got["wet74.2nl"]["c_Pa"] > got["wet13.6nl"]["c_Pa"], "c(74.2 nl) > c(13.6 nl)")
 for case in ("wet13.6nl", "wet74.2nl"):
     ck.true(got[case]["Rc_m"] < got["dry"]["Rc_m"], "%s band centre inwards of the dry one" % case)
+    se = (ref["cases"][case]["torque_Nm"]["std"] ** 2 + ref["cases"]["dry"]["torque_Nm"]["std"] ** 2) ** 0.5
+    dT = got[case]["torque_Nm"] - got["dry"]["torque_Nm"]
+    ck.true(dT >= 3 * se, "%s told apart from dry by the torque: %.3e - %.3e N m = %.1f standard errors (>= 3); c %.3f Pa against dry %.3f Pa"
+            % (case, got[case]["torque_Nm"], got["dry"]["torque_Nm"], dT / se, got[case]["c_Pa"], got["dry"]["c_Pa"]))
 ck.finish()
