@@ -107,6 +107,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
                np.stack([centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan)], axis=1), delimiter=",",
                header="a_m,contacts_per_snapshot,mean_force_N", comments="")
     wet_in, wet_out = _wet_density(data, grid, band, bulk, cfg)
+    contacts = contact_numbers(data)
 
     out = {
         "config": run["config"], "case": run["case"],
@@ -117,7 +118,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
         "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
         "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg,
         "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out, "torque_closure": closure,
-        "fit_variants": variants,
+        "fit_variants": variants, "contact_numbers": contacts,
         "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": len(data), "conventions": CONVENTIONS,
     }
     with open(os.path.join(rundir, "fits.json"), "w") as f:
@@ -251,6 +252,23 @@ def torque_closure(data, cfg, w, omega_at, step_over_R=2.0):
             row[k + "_over_walls"] = row[k + "_Nm"] / measured if measured else None
         out.append(row)
     return out
+
+
+def contact_numbers(data):
+    """Mechanical contacts (overlap, gap <= 0) and separated bridges (gap > 0) per flowing sphere,
+    averaged over the snapshots (Gladkyy 2014 section 4.2: about 20 % more mechanical contacts wet
+    than dry). A contact between two flowing spheres counts for both, a wall contact for one."""
+    mech, sep = [], []
+    for d in data:
+        n = len(d["m"])
+        if len(d["gap"]) == 0:
+            mech.append(0.0), sep.append(0.0)
+            continue
+        weight = np.where(wall_contact_mask(d), 1.0, 2.0)
+        mech.append(float(weight[d["gap"] <= 0].sum()) / n)
+        sep.append(float(weight[d["gap"] > 0].sum()) / n)
+    return {"mechanical_per_particle": float(np.mean(mech)), "mechanical_std": float(np.std(mech)),
+            "separated_bridges_per_particle": float(np.mean(sep))}
 
 
 def _wet_density(data, grid, band, bulk, cfg):
