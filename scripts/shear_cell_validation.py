@@ -1,8 +1,10 @@
 # Validation runs of the split-bottom cell (issue 4): one dry cell is prepared (filled and settled)
 # once; each case runs from that same packing (wet cases get their liquid at the first step).
-# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG]
+# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG [PREPARATION]]
 #   CASE: dry | wet13.6nl | wet74.2nl   CONFIG: validation_2s (default) | validation_4s, validation_5s
 #   (continue validation_2s to 4 or 5 s of rotation) | validation (5 s from the prepared cell)
+#   PREPARATION: dry (default: the dry cell given the liquid at the first step) | wet (a cell filled
+#   and settled with the liquid of CASE; results in results/shear_cell/CONFIG_wetprep/CASE)
 #   CASE = report: compare the analysed cases of CONFIG with Gladkyy 2014 (report.md, report.csv)
 # Cases may run in parallel once the dry cell exists (run dry first, or prepare alone with CASE = prepare).
 # Writes results/shear_cell/CONFIG/CASE/{torque.csv, snap_*.npz, run.json, fits.json, profiles.csv, ...,
@@ -17,6 +19,20 @@ case = sys.argv[1]
 config = sys.argv[2] if len(sys.argv) > 2 else "validation_2s"
 if case == "report":
     print(shearcell.report(os.path.join("results", "shear_cell", config)))
+    sys.exit(0)
+preparation = sys.argv[3] if len(sys.argv) > 3 else "dry"
+if preparation not in ("dry", "wet"):
+    raise ValueError("PREPARATION: %r is not one of dry, wet" % preparation)
+if preparation == "wet":  # settled with its own liquid: bridges formed while the packing settled
+    prepared = os.path.join("results", "shear_cell", "validation", case, "prepared_wet.yade.gz")
+    if not os.path.exists(prepared):
+        os.makedirs(os.path.dirname(prepared), exist_ok=True)
+        shearcell.prepare("validation", case, prepared)
+    outdir = os.path.join("results", "shear_cell", config + "_wetprep", case)
+    run = shearcell.run(prepared, outdir, config=config)
+    print("run: %.3g particle-steps/s, %d steps in %.1f s" % (run["particle_steps_per_s"], run["steps"], run["wall_s"]))
+    fit = cellanalysis.analyse(outdir)
+    print(json.dumps({k: fit[k] for k in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "band_points")}, indent=1, default=float))
     sys.exit(0)
 prepared = os.path.join("results", "shear_cell", "validation", "dry", "prepared.yade.gz")
 if not os.path.exists(prepared):
