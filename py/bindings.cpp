@@ -184,12 +184,15 @@ PYBIND11_MODULE(_kernels, m)
 		                d["gap"] = s.gap, d["beta1"] = s.beta1, d["beta2"] = s.beta2, d["contact_radius1"] = s.contact_radius1;
 		                d["contact_radius2"] = s.contact_radius2, d["neck_radius"] = s.neck_radius, d["pressure"] = s.pressure;
 		                d["force_neck"] = s.force_neck, d["force_contact"] = s.force_contact, d["volume"] = s.volume;
+		                d["volume1"] = s.volume1, d["volume2"] = s.volume2;
 		                return d;
 	                },
 	                py::arg("gap"), py::arg("gamma"),
 	                "Stable bridge at gap [m] in [0, rupture_gap], surface tension gamma [N/m]: dict with gap [m], beta1, beta2 "
 	                "(filling angles) [rad], contact_radius1/2 [m], neck_radius [m], pressure (p_liquid - p_gas) [Pa], "
-	                "force_neck and force_contact (attraction by the neck and contact-line methods) [N], volume [m^3].");
+	                "force_neck and force_contact (attraction by the neck and contact-line methods) [N], volume [m^3], volume1 and "
+	                "volume2 [m^3]: the liquid on solid 1's and solid 2's side of the neck (the narrowest section, where the "
+	                "bridge breaks; at gap = rupture_gap, volume1/volume is the exact transfer ratio to solid 1).");
 
 	m.def("table_axes", [] {
 		py::dict d;

@@ -89,6 +89,7 @@ namespace yl {
 			bool   ok = false;
 			double y = 0, phi = 0, W = 0;    // at the matching plane; W = integral of pi y^2 dx
 			double neck_y = 0, neck_phi = 0; // narrowest section of the arc
+			double neck_x = 0, neck_W = 0;   // its position and W from the contact line to it
 		};
 
 		Arc arc(double x0, double y0, double phi0, double xm, double P, double tol)
@@ -96,7 +97,7 @@ namespace yl {
 			Arc   out;
 			State s = { x0, y0, phi0, 0 };
 			if (!(y0 > 0) || !(std::abs(phi0) <= pi / 2) || x0 > xm) return out; // vertical start: theta = 0 on a plane
-			out.neck_y = y0, out.neck_phi = phi0;
+			out.neck_y = y0, out.neck_phi = phi0, out.neck_x = x0, out.neck_W = 0;
 			// The step length in (0, step] from `from` that makes fn vanish.
 			auto refine = [&](const State& from, const State& to, double step, auto fn) {
 				State m = to;
@@ -122,9 +123,9 @@ namespace yl {
 				const State e    = done ? refine(s, n, h, at_plane) : n;
 				if (s[2] < 0 && e[2] >= 0) { // interior neck
 					const State m = refine(s, e, done ? h : h, [](const State& q) { return q[2]; });
-					if (m[1] < out.neck_y) out.neck_y = m[1], out.neck_phi = m[2];
+					if (m[1] < out.neck_y) out.neck_y = m[1], out.neck_phi = m[2], out.neck_x = m[0], out.neck_W = m[3];
 				}
-				if (e[1] < out.neck_y && (done || e[2] == 0)) out.neck_y = e[1], out.neck_phi = e[2];
+				if (e[1] < out.neck_y && (done || e[2] == 0)) out.neck_y = e[1], out.neck_phi = e[2], out.neck_x = e[0], out.neck_W = e[3];
 				if (done) {
 					out.y = e[1], out.phi = e[2], out.W = e[3];
 					out.ok = std::abs(e[2]) < pi / 2 && e[1] > 0;
@@ -144,7 +145,16 @@ namespace yl {
 			double volume = 0;       // liquid volume: both arcs minus the two sphere caps
 			double neck_y = 0, neck_phi = 0;
 			double y2 = 0;           // contact-line radius on solid 2
+			double volume1 = 0;      // the liquid on solid 1's side of the neck (the rest is on solid 2's side)
 		};
+
+		// Volume of a sphere of radius r between two planes at distances d1 <= d2 from its centre
+		// (clamped to the sphere): pi (r^2 (d2 - d1) - (d2^3 - d1^3)/3).
+		double slab(double r, double d1, double d2)
+		{
+			d1 = std::clamp(d1, -r, r), d2 = std::clamp(d2, -r, r);
+			return pi * (r * r * (d2 - d1) - (d2 * d2 * d2 - d1 * d1 * d1) / 3);
+		}
 
 		// Sphere 1 (radius 1) left of the gap a with filling angle beta1; solid 2 right of it: a sphere
 		// of radius R2 with filling angle s2, or (R2 = inf) a plane with contact-line radius s2.
@@ -173,6 +183,11 @@ namespace yl {
 			const Arc& n = left.neck_y <= right.neck_y ? left : right;
 			out.neck_y = n.neck_y, out.neck_phi = n.neck_phi;
 			out.y2 = y2;
+			// Split at the neck: the liquid between a contact line and the neck is the arc's W minus
+			// the part of that solid between its contact-line plane and the neck plane (the solids'
+			// centres: x = -(a/2 + 1) for sphere 1, -(a/2 + R2) for sphere 2 in its mirrored frame).
+			if (&n == &left) out.volume1 = left.neck_W - slab(1, 1 - h1, left.neck_x + a / 2 + 1);
+			else out.volume1 = out.volume - (right.neck_W - (plane ? 0 : slab(R2, R2 - h2, right.neck_x + a / 2 + R2)));
 			return out;
 		}
 
@@ -478,6 +493,8 @@ namespace yl {
 		out.force_neck      = pi * gamma * R1_ * (2 * s.neck_y * std::cos(s.neck_phi) - p.P * s.neck_y * s.neck_y);
 		out.force_contact   = pi * gamma * R1_ * (2 * y1 * std::cos(phi1) - p.P * y1 * y1);
 		out.volume          = s.volume * R1_ * R1_ * R1_;
+		out.volume1         = s.volume1 * R1_ * R1_ * R1_;
+		out.volume2         = out.volume - out.volume1;
 		return out;
 	}
 

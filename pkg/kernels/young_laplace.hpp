@@ -27,6 +27,8 @@ namespace yl {
 		double force_neck;    // [N] attraction by the neck (gorge) method
 		double force_contact; // [N] attraction by the contact-line method (sphere 1)
 		double volume;        // [m^3] volume of the computed profile (equals the input to ~1e-10)
+		double volume1, volume2; // [m^3] the liquid on either side of the neck (the narrowest section), on
+		                         // solid 1's and solid 2's side: where it goes when the bridge breaks there
 	};
 
 	// One bridge: the geometry is fixed, the gap varies. The constructor follows the branch of

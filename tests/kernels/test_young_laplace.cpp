@@ -138,6 +138,39 @@ TEST(YoungLaplace, ReferencePoints)
 	EXPECT_GE(n, 10);
 }
 
+// The liquid on either side of the neck (where a bridge breaks): equal spheres with equal angles
+// split it in halves at every gap (symmetry); swapping two unequal spheres swaps the shares (the
+// neck then lies on the other arc, computed the other way); the larger sphere keeps more, and more
+// so for larger bridges and larger contact angles (the trends of Elskamp2018 Fig. 7a, b).
+TEST(YoungLaplace, VolumeSplitAtTheNeck)
+{
+	const double R = 1e-3, g = 0.05;
+	for (double theta : { 0.0, 0.17, 0.7 }) {
+		const yl::Bridge b(R, R, 0.02 * R * R * R, theta);
+		for (double f : { 0.0, 0.5, 1.0 }) {
+			const yl::Solution s = b.solve(f * b.rupture_gap(), g);
+			EXPECT_NEAR(s.volume1, 0.5 * s.volume, 1e-9 * s.volume) << "theta " << theta << " gap fraction " << f;
+			EXPECT_NEAR(s.volume1 + s.volume2, s.volume, 1e-15 * s.volume);
+		}
+	}
+	auto share = [&](double R1, double R2, double vstar, double theta) {
+		const double       Rh = 2 * R1 * R2 / (R1 + R2);
+		const yl::Bridge   b(R1, R2, vstar * Rh * Rh * Rh, theta);
+		const yl::Solution s = b.solve(b.rupture_gap(), g);
+		return s.volume1 / s.volume;
+	};
+	for (double ratio : { 1.5, 3.0 }) {
+		EXPECT_NEAR(share(ratio * R, R, 0.01, 0.17), 1 - share(R, ratio * R, 0.01, 0.17), 1e-7) << "ratio " << ratio;
+		double last = 0.5;
+		for (double vstar : { 0.001, 0.01, 0.1 }) {
+			const double t10 = share(ratio * R, R, vstar, 10 * pi / 180), t40 = share(ratio * R, R, vstar, 40 * pi / 180);
+			EXPECT_GT(t10, last) << "the larger sphere keeps more, rising with V*: ratio " << ratio << " V* " << vstar;
+			EXPECT_GT(t40, t10) << "larger contact angle, larger share: ratio " << ratio << " V* " << vstar;
+			last = t10;
+		}
+	}
+}
+
 TEST(YoungLaplace, ClearErrors)
 {
 	EXPECT_THROW(yl::Bridge(1e-3, 1e-3, -1e-12, 0), std::invalid_argument);
