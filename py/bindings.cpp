@@ -1,6 +1,7 @@
 // Python module of the pure capillary kernels (yade_capillary._kernels), re-exported as
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
+#include "transfer.hpp"
 #include "viscous.hpp"
 #include "young_laplace.hpp"
 #include "young_laplace_table.hpp"
@@ -258,6 +259,25 @@ PYBIND11_MODULE(_kernels, m)
 	        "    R1, R2 [m] (R2 = inf: wall), eta [Pa s] >= 0, S_min_factor [-]\n"
 	        "c_t is floored at 0 beyond S_eff = 6.03 r* (the printed form turns negative there); c_r jumps by 3.3 % at "
 	        "S_eff = 0.1 r* (the paper's branches, kept). Raises ValueError naming the parameter and its allowed range.");
+
+	// ---- transfer of a bridge's liquid at rupture (Elskamp2018 eq. 35-43, Richefeu2008) ----
+	m.def(
+	        "parabolic_transfer",
+	        [](double R1, double R2, double volume, double S, double theta1, std::optional<double> theta2) {
+		        const ParabolicBridge p = parabolic_transfer(R1, R2, volume, S, theta1, theta2.value_or(theta1));
+		        py::dict              d;
+		        d["a"] = p.a, d["b"] = p.b, d["c"] = p.c, d["d1"] = p.d1, d["d2"] = p.d2, d["length"] = p.length;
+		        d["x_min"] = p.x_min, d["volume1"] = p.volume1, d["transfer1"] = p.transfer1;
+		        return d;
+	        },
+	        py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("S"), py::arg("theta1") = 0.0, py::arg("theta2") = py::none(),
+	        "Elskamp2018's parabolic bridge at rupture (eq. 35-43, with the mirror of eq. 39 for solid 2): radii R1, R2 [m] "
+	        "(R2 = inf: a plane, which needs theta2 >= 0.001 rad), volume [m^3], separation S [m] (the rupture distance), "
+	        "contact angles [rad] (theta2 defaults to theta1). Returns a dict: the parabola a [1/m], b, c [m], cap heights d1, "
+	        "d2 [m], length between the contact-line planes [m], x_min (narrowest section) [m], volume1 (left of it, to "
+	        "solid 1) [m^3] and transfer1 = volume1/volume.");
+	m.def("diameter_transfer", &diameter_transfer, py::arg("R1"), py::arg("R2"),
+	      "Richefeu2008's transfer ratio R1/(R1 + R2) [-] (1 against a wall, R2 = inf).");
 
 	m.def("dynamic_rupture_distance", &dynamic_rupture_distance, py::arg("static"), py::arg("v_rel"), py::arg("eta"), py::arg("gamma"),
 	      "Dynamic rupture distance [m] (Pitois et al., Elskamp2018 eq. 33): static * (1 + sqrt(|v_rel| eta / gamma)). "

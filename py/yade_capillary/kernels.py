@@ -25,11 +25,17 @@ Viscous bridge forces (Elskamp 2018 eq. 25-29, 33; PendularMat.eta in YADE):
 ``viscous_normal_force(law, S, v_n, R1, R2, eta, volume)`` (laws ``VISCOUS_NAMES``),
 ``viscous_tangential(S, n, v_rel, R1, R2, eta, omega1, omega2)`` and
 ``dynamic_rupture_distance(static, v_rel, eta, gamma)``.
-"""
-from ._kernels import (YoungLaplaceBridge, bridge, dynamic_rupture_distance, force, models, rupture_distance,  # compiled module
-                       rupture_rules, table_axes, viscous_laws, viscous_normal_force, viscous_tangential, willett_coefficients)
 
-__all__ = ["YoungLaplaceBridge", "bridge", "dynamic_rupture_distance", "force", "models", "rupture_distance", "rupture_rules",
+Where the liquid of a breaking bridge goes (the transfer ratio to solid 1): exactly, the solver's
+``YoungLaplaceBridge(...).solve(rupture_gap, gamma)["volume1"] / volume``; Elskamp 2018's parabolic
+bridge ``parabolic_transfer(R1, R2, volume, S, theta1, theta2)``; Richefeu 2008's
+``diameter_transfer(R1, R2)``.
+"""
+from ._kernels import (YoungLaplaceBridge, bridge, diameter_transfer, dynamic_rupture_distance, force, models,  # compiled module
+                       parabolic_transfer, rupture_distance, rupture_rules, table_axes, viscous_laws, viscous_normal_force,
+                       viscous_tangential, willett_coefficients)
+
+__all__ = ["YoungLaplaceBridge", "bridge", "diameter_transfer", "dynamic_rupture_distance", "force", "parabolic_transfer", "models", "rupture_distance", "rupture_rules",
            "table_axes", "viscous_laws", "viscous_normal_force", "viscous_tangential", "willett_coefficients", "MODEL_NAMES",
            "RUPTURE_NAMES", "VISCOUS_NAMES"]
 
