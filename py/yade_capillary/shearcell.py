@@ -363,7 +363,52 @@ def report(config_dir, particles=200000, duration_s=5.0):
             num(r["Rc_top_mm"], "%.1f"), num(r["Rc_mean_mm"], "%.1f"), r["Rc_surface_law_mm"], num(r["W_mean_mm"], "%.1f"),
             1e3 * r["torque_rotating_Nm"], 1e3 * r["torque_static_Nm"], 1e3 * r["torque_cg_at_Rs_Nm"],
             r["rotation_s"], r["steps"], r["wall_s"], r["particle_steps_per_s"], particles, duration_s, r["projected_h"]))
+    md += _variant_tables(config_dir)
     text = "\n".join(md) + "\n"
     with open(os.path.join(config_dir, "report.md"), "w") as f:
         f.write(text)
     return text
+
+
+def _variant_tables(config_dir):
+    """Markdown lines: mu and c of every case under each convention of the fit (fits.json
+    fit_variants), the torque balance of cylinders near the inner wall and up to the split
+    (torque_closure) and the contact numbers; empty for analyses without them."""
+    fits_by_case = {}
+    for case in CASES:
+        path = os.path.join(config_dir, case, "fits.json")
+        if os.path.exists(path):
+            with open(path) as f:
+                fits_by_case[case] = json.load(f)
+    out = []
+    have = [c for c, f in fits_by_case.items() if f.get("fit_variants")]
+    if have:
+        names = list(fits_by_case[have[0]]["fit_variants"])
+        out += ["", "Conventions of the fit, applied to the same CG fields (mu, c [Pa], band points):", "",
+                "| variant | " + " | ".join(have) + " |", "|---|" + "---|" * len(have)]
+        for n in names:
+            cells = []
+            for c in have:
+                v = fits_by_case[c]["fit_variants"].get(n, {})
+                if "mu" not in v:
+                    cells.append(v.get("error", "n/a"))
+                else:
+                    extra = ", k = %.4f ± %.4f 1/Pa" % (v["k_1_Pa"], v["k_err_1_Pa"]) if "k_1_Pa" in v else ""
+                    cells.append("%.3f ± %.3f, %.2f ± %.2f (%d)%s" % (v["mu"], v["mu_err"], v["c_Pa"], v["c_err_Pa"], v["points"], extra))
+            out.append("| %s | %s |" % (n, " | ".join(cells)))
+    have = [c for c, f in fits_by_case.items() if f.get("torque_closure")]
+    if have:
+        out += ["", "Torque balance inside cylinders r0 (torque on the walls inside by contact point [mN m]; contact-by-contact "
+                    "crossing torque, CG flux at w and w/4, as fractions of it):", "",
+                "| case | r0 [mm] | walls inside | crossing | CG w | CG w/4 |", "|---|---|---|---|---|---|"]
+        for c in have:
+            for r in fits_by_case[c]["torque_closure"]:
+                out.append("| %s | %.1f | %.3f | %s | %s | %s |" % (c, 1e3 * r["r0_m"], 1e3 * r["walls_inside_Nm"],
+                           *("n/a" if r[k] is None else "%.3f" % r[k] for k in ("crossing_over_walls", "cg_w_over_walls", "cg_w4_over_walls"))))
+    have = [c for c, f in fits_by_case.items() if f.get("contact_numbers")]
+    if have:
+        out += ["", "| case | mechanical contacts per sphere | separated bridges per sphere |", "|---|---|---|"]
+        for c in have:
+            k = fits_by_case[c]["contact_numbers"]
+            out.append("| %s | %.3f ± %.3f | %.3f |" % (c, k["mechanical_per_particle"], k["mechanical_std"], k["separated_bridges_per_particle"]))
+    return out
