@@ -14,7 +14,7 @@ import yade_capillary
 from yade_capillary import cellanalysis, shearcell
 
 nseeds = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(yade_capillary.__file__))))  # __file__ is yade's launcher here
+root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(yade_capillary.__file__))))  # __file__ is yade's launcher here; the package in build/python links to py/
 work = tempfile.mkdtemp(prefix="shear_cell_ref_")
 values = {}
 for case in shearcell.CASES:
