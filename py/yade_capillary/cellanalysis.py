@@ -26,7 +26,8 @@ CONVENTIONS = {
               "the run); torque_cg_at_Rs_Nm: 2 pi Rs^2 times the integral of sigma_r_theta over z on the cylinder r = Rs, "
               "from 3 kernel widths below the bottom to 3 above the highest particle; lower than torque_Nm because the "
               "kernel averages the torque flux over r around Rs, where it peaks, and bottom contacts straddling the split "
-              "pass torque to the static bottom outside Rs (ci, dry: 74 % of torque_Nm with w = R, 83 % with w = R/4)",
+              "pass torque to the static bottom outside Rs (ci, dry: 74 % of torque_Nm with w = R, 83 % with w = R/4); "
+              "torque_cg_at_Rs_w4_Nm: the same with w/4; torque_closure: the balance of cylinders r0, see torque_closure()",
 }
 
 
@@ -91,6 +92,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     variants = fit_variants(sigma, gdot, away, gmin)
 
     torque_cg = cylinder_flux(data, cfg["Rs"], grid.w, omega_at)
+    torque_cg_narrow = cylinder_flux(data, cfg["Rs"], grid.w / 4, omega_at)
     closure = torque_closure(data, cfg, grid.w, omega_at)
 
     # contacts and mean force versus separation (Gladkyy eq. 15), wet-contact density in and out of the band
@@ -116,7 +118,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
         "mu_threshold": yield_threshold.get("mu"), "mu_err_threshold": yield_threshold.get("mu_err"),
         "c_Pa_threshold": yield_threshold.get("c_Pa"), "c_err_Pa_threshold": yield_threshold.get("c_err_Pa"),
         "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
-        "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg,
+        "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg, "torque_cg_at_Rs_w4_Nm": torque_cg_narrow,
         "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out, "torque_closure": closure,
         "fit_variants": variants, "contact_numbers": contacts,
         "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": len(data), "conventions": CONVENTIONS,
