@@ -1,7 +1,7 @@
 # Split-bottom ring shear cell: prepare (fill, settle, O.save), run (rotate, torques, snapshots)
 # and analyse (coarse-graining, fits) one configuration and liquid case.
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell.py CONFIG CASE [outdir]
-#   CONFIG: ci | validation   CASE: dry | wet13.6nl | wet74.2nl   (py/yade_capillary/shearcell.py)
+#   CONFIG: ci | ci_dt100 (ci at tc/100) | validation   CASE: dry | wet13.6nl | wet74.2nl   (py/yade_capillary/shearcell.py)
 # Writes results/shear_cell/CONFIG/CASE/{prepared.yade.gz, torque.csv, snap_*.npz, fits.json, profiles.csv, ...}
 import json
 import os

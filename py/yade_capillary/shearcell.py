@@ -40,7 +40,10 @@ VALIDATION_5S = dict(VALIDATION, run_s=3.0, snapshots=12, snapshot_dt_s=0.25)
 # Gladkyy's cell size: "nearly 200 000" spheres of R = 2.381 mm, about 168 000 flowing, i.e. the
 # validation cell (about 15 000 flowing) enlarged 2.2 times linearly; for speed probes.
 GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["Ri"], Rs=2.2 * VALIDATION["Rs"], H=2.2 * VALIDATION["H"])
-CONFIGS = {"validation": VALIDATION, "gladkyy_size": GLADKYY_SIZE, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
+# The ci cell at Gladkyy's time step, about tc/100 (he needed about 1e6 steps for 5 s at tc = 5.4e-4 s):
+# the time-step experiment of the cause analysis, compared with the ci references (tc/20).
+CI_DT100 = dict(CI, dt_over_tc=0.01)
+CONFIGS = {"validation": VALIDATION, "ci_dt100": CI_DT100, "gladkyy_size": GLADKYY_SIZE, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
            "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "ci": CI}
 # Configurations that start from the final state of another one's run of the same case.
 CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s"}
