@@ -21,7 +21,9 @@ CONVENTIONS = {
     "band": "mu, c: gamma_dot > 80 % of its maximum at that height; mu_threshold, c_threshold: gamma_dot > gamma_dot_min; "
             "both with density > 50 % of the bulk and z > 3 R",
     "tau_p": "tau = sqrt(sigma_rtheta^2 + sigma_ztheta^2), p = tr(sigma)/3; fit tau = mu p + c (Gladkyy 2014 eq. 14)",
-    "contacts_vs_a": "a = surface separation (negative: overlap); bins of width (a_crit + delta_max)/100 (Gladkyy 2014 eq. 15)",
+    "contacts_vs_a": "a = surface separation (negative: overlap); bins of width (a_crit + delta_max)/100 (Gladkyy 2014 eq. 15); "
+                     "all contacts per snapshot and their mean force, and per unit volume inside the band (with the mean force) "
+                     "and in the bulk outside it, a contact placed at the middle of its branch",
     "torque": "torque_Nm: on the rotating walls from their contacts (z component about the axis, mean of the second half of "
               "the run); torque_cg_at_Rs_Nm: 2 pi Rs^2 times the integral of sigma_r_theta over z on the cylinder r = Rs, "
               "from 3 kernel widths below the bottom to 3 above the highest particle; lower than torque_Nm because the "
@@ -105,9 +107,20 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     counts, _ = np.histogram(gaps, edges)
     fsum, _ = np.histogram(gaps, edges, weights=forces)
     centers = (edges[:-1] + edges[1:]) / 2
+    # The same inside the band and in the bulk outside it (Gladkyy Fig. 9-10: contact number and mean
+    # force against the gap in the band; wet-contact density in and out of it), per unit volume.
+    where = np.concatenate([_region(d, grid, band, bulk) for d in data])
+    cell_vol = grid.volume_elements()
+    v_in, v_out = cell_vol[band].sum(), cell_vol[bulk & ~band].sum()
+    n_in, _ = np.histogram(gaps[where == 1], edges)
+    f_in, _ = np.histogram(gaps[where == 1], edges, weights=forces[where == 1])
+    n_out, _ = np.histogram(gaps[where == 2], edges)
     np.savetxt(os.path.join(rundir, "contacts_vs_a.csv"),
-               np.stack([centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan)], axis=1), delimiter=",",
-               header="a_m,contacts_per_snapshot,mean_force_N", comments="")
+               np.stack([centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan),
+                         n_in / len(data) / v_in if v_in > 0 else np.full(len(centers), np.nan),
+                         np.where(n_in > 0, f_in / np.maximum(n_in, 1), np.nan),
+                         n_out / len(data) / v_out if v_out > 0 else np.full(len(centers), np.nan)], axis=1), delimiter=",",
+               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
     wet_in, wet_out = _wet_density(data, grid, band, bulk, cfg)
     contacts = contact_numbers(data)
 
@@ -279,6 +292,18 @@ def contact_numbers(data):
         sep.append(float(weight[d["gap"] > 0].sum()) / n)
     return {"mechanical_per_particle": float(np.mean(mech)), "mechanical_std": float(np.std(mech)),
             "separated_bridges_per_particle": float(np.mean(sep))}
+
+
+def _region(d, grid, band, bulk):
+    """For every contact of snapshot d: 1 if the middle of its branch lies in the band, 2 in the bulk
+    outside it, 0 elsewhere (the nearest grid node decides)."""
+    if len(d["gap"]) == 0:
+        return np.zeros(0, int)
+    dr, dz = grid.r[1] - grid.r[0], grid.z[1] - grid.z[0]
+    mid = (d["xP"] + d["xI"]) / 2
+    i = np.clip(np.round((np.hypot(mid[:, 0], mid[:, 1]) - grid.r[0]) / dr).astype(int), 0, len(grid.r) - 1)
+    k = np.clip(np.round((mid[:, 2] - grid.z[0]) / dz).astype(int), 0, len(grid.z) - 1)
+    return np.where(band[i, k], 1, np.where(bulk[i, k], 2, 0))
 
 
 def _wet_density(data, grid, band, bulk, cfg):
