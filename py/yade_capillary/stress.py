@@ -24,11 +24,11 @@ LIQUID_RTOL = 1e-12  # liquid balance, relative to the liquid formed so far (the
 
 
 def material(model, Vb, gamma=0.0206, theta=0.0, tc=1e-4, en=0.5, et=0.5, density=2500.0, friction=0.3, rupture="willett",
-             calibrate_from="willett_full", extrapolate=True):
+             calibrate_from="willett_full", extrapolate=True, eta=0.0):
     """A wet PendularMat. extrapolate=True: wide radius ratios leave some bridges outside a model's
-    fitted domain, which are then extrapolated instead of refused."""
+    fitted domain, which are then extrapolated instead of refused. eta: liquid viscosity [Pa s]."""
     m = PendularMat(tc=tc, en=en, et=et, density=density, frictionAngle=friction, Vb=Vb, gamma=gamma, theta=theta,
-                    model=model, rupture=rupture, extrapolate=extrapolate, wet=True)
+                    model=model, rupture=rupture, extrapolate=extrapolate, eta=eta, wet=True)
     if model == "linear_irreversible":
         m.calibrateFrom = calibrate_from  # linearFmax = linearKc = 0: calibrated per bridge (Roy section 4.2)
     return m
