@@ -332,13 +332,16 @@ double rupture_distance(Rupture rule, double R1, double R2, double volume, doubl
 Bridge make_bridge(const BridgeSpec& s)
 {
 	const Pair p = pair_of(s);
+	Bridge     b;
 	switch (s.model) {
 #define CAPILLARY_BUILD_(name, Type)                                                                                                                 \
-	case Model::name: return build<Type, 1 + std::size_t(Model::name)>(s, p, #name);
+	case Model::name: b = build<Type, 1 + std::size_t(Model::name)>(s, p, #name); break;
 		CAPILLARY_MODELS(CAPILLARY_BUILD_)
 #undef CAPILLARY_BUILD_
+		default: throw std::invalid_argument("model: unknown enumerator");
 	}
-	throw std::invalid_argument("model: unknown enumerator");
+	b.force_rupture = bridge_force(b, b.rupture);
+	return b;
 }
 
 double force(const BridgeSpec& spec, double a) { return bridge_force(make_bridge(spec), a); }

@@ -285,6 +285,7 @@ struct Bridge {
 	Models::Variant m;
 	double          rupture = 0; // [m] gap at which the bridge breaks
 	double          force0  = 0; // [N] force at contact, F(a <= 0)
+	double          force_rupture = 0; // [N] force at the rupture distance: the cap of the continued force
 	Model           model() const // throws std::logic_error for a default Bridge (no model)
 	{
 		if (m.index() == 0) throw std::logic_error("capillary::Bridge: no model (default-constructed bridge)");
@@ -300,9 +301,11 @@ Bridge make_bridge(const BridgeSpec& spec);
 // Capillary force [N] at gap a [m] of a bridge that lasts up to the gap `range` [m]: 0 for a > range
 // (and a NaN gap), F(0) for a <= 0. range = b.rupture is the static bridge (bridge_force). A longer
 // range is the dynamic rupture rule (Elskamp2018 eq. 33): between the static rupture distance and
-// range each model's formula is continued, floored at 0 (Elskamp evaluates the closed-form models
-// up to S_rup,dyn; Soulie's constant C may turn the continued formula negative; the tabulated exact
-// bridge, which has no static solution there, keeps its force at the static rupture distance).
+// range each model's formula is continued (Elskamp evaluates the closed-form models up to
+// S_rup,dyn), floored at 0 and capped at the force at the static rupture distance: Soulie's
+// constant C may turn the continued formula negative, Weigert's has a pole (its neck radius, eq.
+// A7, reaches 0 at 2-4 S_rup), and the tabulated exact bridge, which has no static solution there,
+// keeps its force at the static rupture distance.
 inline double bridge_force_within(const Bridge& b, double a, double range)
 {
 	if (!(a <= range)) return 0;
@@ -313,7 +316,7 @@ inline double bridge_force_within(const Bridge& b, double a, double range)
 		        else return model.force(a);
 	        },
 	        b.m);
-	return a <= b.rupture ? f : std::max(f, 0.0);
+	return a <= b.rupture ? f : std::min(std::max(f, 0.0), b.force_rupture);
 }
 // Capillary force [N] at gap a [m]: 0 for a > rupture (and a NaN gap), F(0) for a <= 0.
 inline double bridge_force(const Bridge& b, double a) { return bridge_force_within(b, a, b.rupture); }

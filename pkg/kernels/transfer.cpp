@@ -102,7 +102,7 @@ ParabolicBridge parabolic_transfer(double R1, double R2, double volume, double S
 	// stepping up from a small filling angle, then bisection.
 	double lo = -1, hi = 1e-4;
 	bool   found = false;
-	for (; hi < top - theta1; hi = std::min(hi * 1.1, top - theta1)) {
+	for (; hi < top - theta1; hi *= 1.1) {
 		const double v = volumeAt(hi);
 		if (!std::isnan(v) && p.a > 0) {
 			if (v >= volume && lo > 0) {
@@ -111,7 +111,6 @@ ParabolicBridge parabolic_transfer(double R1, double R2, double volume, double S
 			}
 			if (v < volume) lo = hi;
 		} else if (lo > 0) break; // past the concave branch
-		if (hi >= top - theta1) break;
 	}
 	if (!found)
 		throw std::runtime_error("parabolic_transfer: no concave parabolic bridge of volume " + format_value(volume) + " m^3 at S = " + format_value(S) + " m");

@@ -157,7 +157,7 @@ namespace {
 		if (heavy(b1) && heavy(b2)) return std::numeric_limits<Real>::infinity();
 		Real cn = p.cn, cs = p.cs;
 		if (p.viscous) {
-			Real ct, cr;
+			double ct, cr;
 			bool near;
 			p.viscous->tangential_coefficients(0, ct, cr, near);
 			cn += p.viscous->normal_coefficient(0);
@@ -345,33 +345,35 @@ void PendularMat::validate()
 		          + capillary::format_value(capillary::viscous_limits::s_min_factor_max) + "]")
 		                 .c_str(),
 		         "-");
-	const auto parsed = parseRupture(rupture);
+	// The names are resolved into locals: the members change only when every check has passed, so
+	// that a rejected assignment leaves them as they were (restore() puts back the attributes only).
+	const auto               parsed = parseRupture(rupture);
+	capillary::Model         newModel, newCalibrate;
+	capillary::NormalViscous newViscous;
 	try {
-		modelId     = capillary::model_from_name(model);
-		calibrateId = capillary::model_from_name(calibrateFrom);
+		newModel     = capillary::model_from_name(model);
+		newCalibrate = capillary::model_from_name(calibrateFrom);
 	} catch (const std::invalid_argument& e) {
 		throw std::invalid_argument(c + "." + e.what());
 	}
-	ruptureId      = parsed.first;
-	dynamicRupture = parsed.second;
 	try {
-		viscousId = capillary::normal_viscous_from_name(viscousNormal);
+		newViscous = capillary::normal_viscous_from_name(viscousNormal);
 	} catch (const std::invalid_argument&) {
 		throw std::invalid_argument(c + ".viscousNormal = '" + viscousNormal + "' is unknown; allowed: " + capillary::normal_viscous_names());
 	}
-	if (wet && dynamicRupture && !(eta > 0))
+	if (wet && parsed.second && !(eta > 0))
 		throw std::invalid_argument(c + ".rupture = '" + rupture + "' (Pitois' dynamic rupture distance, Elskamp2018 eq. 33) needs eta > 0; eta = "
 		                            + capillary::format_value(eta) + " Pa s (set eta before rupture, or use a static rule: "
 		                            + capillary::rupture_names() + ")");
-	if (calibrateId == capillary::Model::linear_irreversible)
+	if (newCalibrate == capillary::Model::linear_irreversible)
 		throw std::invalid_argument(c + ".calibrateFrom = 'linear_irreversible' is not allowed; allowed: any other model");
 	if (wet && !(Vb > 0)) badValue(c, "Vb", Vb, "(0, inf) when wet=True (set Vb before wet)", "m^3");
 	if (wet && !(gamma > 0)) badValue(c, "gamma", gamma, "(0, inf) when wet=True (set gamma before wet)", "N/m");
 	// The material alone decides the contact angle against the model's domain (and the
 	// calibration model's): refused here rather than at the first interaction.
 	if (wet && !extrapolate) {
-		const bool calibrated = modelId == capillary::Model::linear_irreversible && !(linearFmax > 0 && linearKc > 0);
-		for (const capillary::Model m : { modelId, calibrated ? calibrateId : modelId }) {
+		const bool calibrated = newModel == capillary::Model::linear_irreversible && !(linearFmax > 0 && linearKc > 0);
+		for (const capillary::Model m : { newModel, calibrated ? newCalibrate : newModel }) {
 			const capillary::ModelInfo& mi = capillary::info(m);
 			if (!mi.domain.allows_theta(theta))
 				badValue(c, "theta", theta, ("[0, " + capillary::format_value(mi.domain.theta_max) + "], the domain of model " + mi.name + " (" + mi.domain.source
@@ -380,6 +382,11 @@ void PendularMat::validate()
 		}
 	}
 	if (isSet(en)) dampingRatioN = dampingRatioFor(en);
+	modelId        = newModel;
+	calibrateId    = newCalibrate;
+	ruptureId      = parsed.first;
+	dynamicRupture = parsed.second;
+	viscousId      = newViscous;
 }
 
 std::string PendularPhys::modelName() const { return modelIndex < 0 ? "" : capillary::name_of(capillary::Model(modelIndex)); }
@@ -485,7 +492,11 @@ Real Ip2_PendularMat_PendularMat_PendularPhys::criticalDt(Body::id_t id1, Body::
 		throw std::invalid_argument("criticalDt: bodies " + std::to_string(id1) + " and " + std::to_string(id2) + " must both have a PendularMat");
 	auto phys = shared_ptr<PendularPhys>(new PendularPhys());
 	setContact(phys, *m1, *m2, body1, body2);
-	setLiquid(phys, *m1, *m2, body1, body2);
+	try {
+		setLiquid(phys, *m1, *m2, body1, body2);
+	} catch (const std::exception&) { // a refused bridge: the pair has the contact law alone, as in go()
+		phys->viscous.reset();
+	}
 	return pairCriticalDt(*phys, *body1, *body2);
 }
 
@@ -539,16 +550,21 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 				        std::string("PendularMat.") + name + " must be equal on both materials of a bridge; got '" + a + "' and '" + b + "'");
 		};
 		mustMatch("model", m1.model, m2.model);
-		mustMatch("rupture", m1.rupture, m2.rupture);
+		if (m1.ruptureId != m2.ruptureId || m1.dynamicRupture != m2.dynamicRupture) mustMatch("rupture", m1.rupture, m2.rupture); // pitois = willett+pitois
 		mustMatch("forceInContact", m1.forceInContact ? "True" : "False", m2.forceInContact ? "True" : "False");
 		// Compared as values: 1e-7 and 4e-7 N are different, and the message shows both exactly.
 		if (m1.linearFmax != m2.linearFmax) mustMatch("linearFmax", capillary::format_value(m1.linearFmax), capillary::format_value(m2.linearFmax));
 		if (m1.linearKc != m2.linearKc) mustMatch("linearKc", capillary::format_value(m1.linearKc), capillary::format_value(m2.linearKc));
 		mustMatch("calibrateFrom", m1.calibrateFrom, m2.calibrateFrom);
 		mustMatch("extrapolate", m1.extrapolate ? "True" : "False", m2.extrapolate ? "True" : "False");
-		mustMatch("viscousNormal", m1.viscousNormal, m2.viscousNormal);
-		if (m1.viscousSmin != m2.viscousSmin)
-			mustMatch("viscousSmin", capillary::format_value(m1.viscousSmin), capillary::format_value(m2.viscousSmin));
+		if ((m1.eta > 0) != (m2.eta > 0))
+			throw std::invalid_argument("PendularMat.eta must be > 0 on both materials of a viscous bridge or 0 on both; got " + capillary::format_value(m1.eta)
+			                            + " and " + capillary::format_value(m2.eta) + " Pa s (the liquid's viscosity; a material left at 0 would halve it)");
+		if (m1.eta > 0) {
+			mustMatch("viscousNormal", m1.viscousNormal, m2.viscousNormal);
+			if (m1.viscousSmin != m2.viscousSmin)
+				mustMatch("viscousSmin", capillary::format_value(m1.viscousSmin), capillary::format_value(m2.viscousSmin));
+		}
 		phys->R1             = radiusOf(body1);
 		phys->R2             = radiusOf(body2);
 		phys->swapped        = math::isinf(phys->R1);

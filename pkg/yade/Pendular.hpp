@@ -60,12 +60,12 @@ public:
 		((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; the force models use the angle whose cosine is the mean of the cosines (Elskamp2018 eq. 14-15, closer to the exact bridge than the mean angle), the lian and willett rupture rules the mean angle, willett_elskamp both."))
 		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model, one of:" CAPILLARY_MODEL_NAMES_LITERAL " (yade_capillary.kernels.models() lists each with its source and validity domain; young_laplace_table is the exact bridge, tabulated, with the exact rupture distance). A bridge outside its model's domain is refused unless extrapolate=True; a contact angle outside it is refused when the material is wet. Must be equal on both materials."))
-		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32); linear_irreversible and young_laplace_table use their own range (fmax/kc, the exact rupture). Append +pitois (e.g. willett+pitois) for the dynamic rupture distance S_rup (1 + sqrt(|v1 - v2| eta/gamma)) (Pitois et al. 2001, Elskamp2018 eq. 33) on top of the static rule (or the model's own range); pitois alone means willett+pitois. +pitois needs eta > 0. Beyond the static distance the model's formula is continued (floored at 0; young_laplace_table keeps its force at the static rupture distance). Must be equal on both materials."))
+		((std::string, rupture, "willett", Attr::triggerPostLoad, "Rupture rule: lian ((1+theta/2) V^(1/3)), willett (Gladkyy2014 eq. 2), willett_elskamp (Elskamp2018 eq. 32); linear_irreversible and young_laplace_table use their own range (fmax/kc, the exact rupture). Append +pitois (e.g. willett+pitois) for the dynamic rupture distance S_rup (1 + sqrt(|v1 - v2| eta/gamma)) (Pitois et al. 2001, Elskamp2018 eq. 33) on top of the static rule (or the model's own range); pitois alone means willett+pitois. +pitois needs eta > 0. Beyond the static distance the model's formula is continued, floored at 0 and capped at the force at the static distance (young_laplace_table keeps that force). Must mean the same rule on both materials."))
 		((bool, forceInContact, false, Attr::triggerPostLoad, "True: the bridge force at contact F(0) also acts during overlap (Richefeu2008, Roy); False: it is off during overlap (Gladkyy2014 eq. 4). Must be equal on both materials."))
 		((Real, linearFmax, 0, Attr::triggerPostLoad, "linear_irreversible: maximum adhesive force [N], (0, inf); 0 (with linearKc = 0) to calibrate from calibrateFrom."))
 		((Real, linearKc, 0, Attr::triggerPostLoad, "linear_irreversible: adhesive stiffness [N/m], (0, inf); 0 (with linearFmax = 0) to calibrate from calibrateFrom."))
 		((std::string, calibrateFrom, "willett_full", Attr::triggerPostLoad, "linear_irreversible: model whose maximum force and adhesive energy the linear law matches, per bridge (Roy section 4.2)."))
-		((Real, eta, 0, Attr::triggerPostLoad, "Dynamic viscosity of the liquid [Pa s], [0, 1e9]. 0 (the default): no viscous force is evaluated. > 0: a bridge adds the normal viscous force (viscousNormal) and Goldman's tangential force and moments (Elskamp2018 eq. 28, 29), in contact and separated. Two materials: arithmetic mean."))
+		((Real, eta, 0, Attr::triggerPostLoad, "Dynamic viscosity of the liquid [Pa s], [0, 1e9]. 0 (the default): no viscous force is evaluated. > 0: a bridge adds the normal viscous force (viscousNormal) and Goldman's tangential force and moments (Elskamp2018 eq. 28, 29), in contact and separated. Two materials: arithmetic mean; both must be > 0 or both 0 (a wall left at 0 would halve the viscosity of its bridges)."))
 		((std::string, viscousNormal, "pitois", Attr::triggerPostLoad, "Normal viscous force with eta > 0: pitois (Pitois et al. 2000, Elskamp2018 eq. 26, finite bridge volume; the default) or adams_perchard (Elskamp2018 eq. 25). Must be equal on both materials."))
 		((Real, viscousSmin, 0.001, Attr::triggerPostLoad, "S_min / r* [-], [1e-12, 1]: the viscous forces are evaluated at the separation max(S, 0) + S_min, S_min = viscousSmin r*, r* = R1 R2/(R1 + R2) (R1 for a wall), so that they stay finite at contact (Elskamp2018 after eq. 29: 0.001). Must be equal on both materials."))
 		((bool, extrapolate, false, Attr::triggerPostLoad, "False: a bridge outside its model's validity domain (V*, contact angle, size ratio; yade_capillary.kernels.models()) is an error. True: the model is evaluated at the nearest point of its domain, stretched to the bridge's rupture distance and scaled by R cos(theta) (finite, non-negative, monotone where the model is). Must be equal on both materials.")),
@@ -266,7 +266,9 @@ REGISTER_SERIALIZABLE(Law2_ScGeom_PendularPhys_Bridge);
 // phys.sRupture (eq. 33 if dynamicRupture) and returns the moments on bodies 1 and 2.
 // Velocities: the centres of the spheres (Elskamp2018 after eq. 25), a wall's or facet's velocity
 // at the contact point, which has no radius to turn its rotation into a surface velocity (its arm
-// is 0 in omega_r = r1 omega1 + r2 omega2 and in the moments r n x F).
+// is 0 in omega_r = r1 omega1 + r2 omega2). Moments: r n x F1 on a sphere (Elskamp2018 after eq. 6;
+// for separated spheres the two do not balance the couple of the pair of forces, a property of the
+// paper's model); a wall or facet gets the moment of its force at the contact point.
 struct PendularViscousMoments {
 	Vector3r torque1, torque2;
 };
@@ -280,7 +282,7 @@ inline PendularViscousMoments pendularViscous(const ScGeom& geom, PendularPhys& 
 	const Vector3r& n    = geom.normal; // from body 1 to body 2
 	const Vector3r  vRel = v1 - v2;
 	const Real      vn   = n.dot(vRel); // > 0: approaching
-	Real            ct, cr;
+	double          ct, cr;
 	bool            near;
 	phys.viscous->tangential_coefficients(S, ct, cr, near);
 	const Vector3r force1 = capillary::tangential_viscous_force(ct, cr, n, Vector3r(vRel - vn * n), Vector3r(arm1 * k.angVel1 + arm2 * k.angVel2));
@@ -288,7 +290,8 @@ inline PendularViscousMoments pendularViscous(const ScGeom& geom, PendularPhys& 
 	phys.viscousShear     = -force1;
 	phys.sRupture         = phys.dynamicRupture ? phys.bridge.rupture * phys.viscous->rupture_stretch(vRel.norm()) : phys.bridge.rupture;
 	const Vector3r nxF1   = n.cross(force1); // M1 = r1 n x F1, M2 = r2 n x F1 (Elskamp2018 after eq. 6)
-	return { arm1 * nxF1, arm2 * nxF1 };
+	return { wall1 ? Vector3r((geom.contactPoint - k.pos1).cross(force1)) : Vector3r(arm1 * nxF1),
+		 wall2 ? Vector3r((geom.contactPoint - k.pos2 - k.shift2).cross(-force1)) : Vector3r(arm2 * nxF1) };
 }
 
 inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(PendularPhys& phys, bool owned)

@@ -223,7 +223,7 @@ def crossing_torque(data, r0):
         if len(F) == 0:
             continue
         inP, inI = np.hypot(xP[:, 0], xP[:, 1]) < r0, np.hypot(xI[:, 0], xI[:, 1]) < r0
-        c = (xP + xI) / 2
+        c = np.where(wall_contact_mask(d)[:, None], xI, (xP + xI) / 2)  # a wall contact's xI is its contact point
         tz = c[:, 0] * F[:, 1] - c[:, 1] * F[:, 0]  # torque of the force on P
         total += tz[inP & ~inI].sum() - tz[~inP & inI].sum()
     return total / len(data)
@@ -296,30 +296,27 @@ def contact_numbers(data):
 
 def _region(d, grid, band, bulk):
     """For every contact of snapshot d: 1 if the middle of its branch lies in the band, 2 in the bulk
-    outside it, 0 elsewhere (the nearest grid node decides)."""
+    outside it, 0 elsewhere, also off the grid by more than half a node spacing (the nearest grid
+    node decides)."""
     if len(d["gap"]) == 0:
         return np.zeros(0, int)
     dr, dz = grid.r[1] - grid.r[0], grid.z[1] - grid.z[0]
     mid = (d["xP"] + d["xI"]) / 2
-    i = np.clip(np.round((np.hypot(mid[:, 0], mid[:, 1]) - grid.r[0]) / dr).astype(int), 0, len(grid.r) - 1)
-    k = np.clip(np.round((mid[:, 2] - grid.z[0]) / dz).astype(int), 0, len(grid.z) - 1)
-    return np.where(band[i, k], 1, np.where(bulk[i, k], 2, 0))
+    fi, fk = (np.hypot(mid[:, 0], mid[:, 1]) - grid.r[0]) / dr, (mid[:, 2] - grid.z[0]) / dz
+    on = (fi > -0.5) & (fi < len(grid.r) - 0.5) & (fk > -0.5) & (fk < len(grid.z) - 0.5)
+    i = np.clip(np.round(fi).astype(int), 0, len(grid.r) - 1)
+    k = np.clip(np.round(fk).astype(int), 0, len(grid.z) - 1)
+    return np.where(on & band[i, k], 1, np.where(on & bulk[i, k], 2, 0))
 
 
 def _wet_density(data, grid, band, bulk, cfg):
     """Contacts with a bridge and a gap (a > 0) per volume, inside and outside the band [1/m^3]."""
-    dr, dz = grid.r[1] - grid.r[0], grid.z[1] - grid.z[0]
     cell_vol = grid.volume_elements()
     n_in = n_out = 0
     for d in data:
-        wet = d["gap"] > 0
-        if not wet.any():
-            continue
-        mid = (d["xP"][wet] + d["xI"][wet]) / 2
-        i = np.clip(np.round((np.hypot(mid[:, 0], mid[:, 1]) - grid.r[0]) / dr).astype(int), 0, len(grid.r) - 1)
-        k = np.clip(np.round((mid[:, 2] - grid.z[0]) / dz).astype(int), 0, len(grid.z) - 1)
-        n_in += np.sum(band[i, k])
-        n_out += np.sum(bulk[i, k] & ~band[i, k])
+        where, wet = _region(d, grid, band, bulk), d["gap"] > 0
+        n_in += np.sum(wet & (where == 1))
+        n_out += np.sum(wet & (where == 2))
     v_in, v_out = cell_vol[band].sum(), cell_vol[bulk & ~band].sum()
     return (n_in / len(data) / v_in if v_in > 0 else None), (n_out / len(data) / v_out if v_out > 0 else None)
 

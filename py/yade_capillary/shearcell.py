@@ -285,7 +285,9 @@ def snapshot(path, info):
     for I in O.interactions:
         if not I.isReal:
             continue
-        f2 = I.phys.normalForce + I.phys.shearForce  # force on body 2 (YADE convention), capillary included
+        # force on body 2 (YADE convention): capillary and normal viscous force are in normalForce, the
+        # tangential viscous force (eta > 0) is not in shearForce, the spring
+        f2 = I.phys.normalForce + I.phys.shearForce + I.phys.viscousShear
         a, b = I.id1, I.id2
         if a not in flowing and b not in flowing:
             continue

@@ -139,7 +139,8 @@ def invariants(law=None, box=None):
         bad_pos=sum(not finite(b.state.pos) for b in bodies),
         bad_vel=sum(not (finite(b.state.vel) and finite(b.state.angVel)) for b in bodies),
         bad_force=sum(not (finite(O.forces.f(b.id)) and finite(O.forces.t(b.id))) for b in O.bodies if b is not None),
-        bad_fcap=sum(not (math.isfinite(I.phys.Fcap) and finite(I.phys.normalForce) and finite(I.phys.shearForce)) for I in real),
+        bad_fcap=sum(not (math.isfinite(I.phys.Fcap) and math.isfinite(I.phys.Fvisc) and finite(I.phys.normalForce) and finite(I.phys.shearForce)
+                          and finite(I.phys.viscousShear)) for I in real),
         outside=sum(not all(-rmax <= x <= box + rmax for x in b.state.pos) for b in bodies) if box else 0,
         max_speed=max((b.state.vel.norm() for b in bodies), default=0.0),
         nBridges=law.nBridges, n_active=len(active), sum_Vb=math.fsum(I.phys.Vb for I in active),
@@ -157,7 +158,7 @@ def check(ck, where, law=None, box=None, escapes_fail=True):
     ck.true(v["bad_pos"] == 0, "%s: finite positions (%d of %d spheres not)" % (where, v["bad_pos"], v["n_spheres"]))
     ck.true(v["bad_vel"] == 0, "%s: finite velocities (%d not)" % (where, v["bad_vel"]))
     ck.true(v["bad_force"] == 0, "%s: finite forces and torques (%d bodies not)" % (where, v["bad_force"]))
-    ck.true(v["bad_fcap"] == 0, "%s: finite Fcap, normal and shear forces (%d interactions not)" % (where, v["bad_fcap"]))
+    ck.true(v["bad_fcap"] == 0, "%s: finite Fcap, Fvisc, normal, shear and viscous shear forces (%d interactions not)" % (where, v["bad_fcap"]))
     ck.true(v["nBridges"] >= 0 and v["nBridges"] == v["n_active"],
             "%s: nBridges = %d >= 0 and = number of active bridges %d" % (where, v["nBridges"], v["n_active"]))
     scale = max(v["liquidFormed"], v["liquidVolume"], 1e-300)

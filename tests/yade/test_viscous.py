@@ -151,6 +151,11 @@ for loop in ("fused", "standard"):
     scale = abs(fcap) + abs(fn)
     close_vec(O.forces.f(1), expect, scale, loop + " moving facet: force on the sphere", "kernels, v_rel at the contact point")
     close_vec(O.forces.t(1), t["moment1"], R * scale, loop + " moving facet: moment on the sphere", "R1 n x F1")
+    # The facet gets the moment of its viscous force at the contact point (the capillary and normal
+    # viscous forces of a separated bridge give a body no moment, as without viscosity).
+    ff = [-x for x in t["force"]]
+    expect_t = [arm[(k + 1) % 3] * ff[(k + 2) % 3] - arm[(k + 2) % 3] * ff[(k + 1) % 3] for k in range(3)]
+    close_vec(O.forces.t(0), expect_t, 0.05 * scale, loop + " moving facet: moment on the facet", "(contact point - centre) x its viscous force")
 
 # 3. Pull-off at constant speed (Elskamp Fig. 5b setup): F = F_cap(S) + c_n(S) v at every step,
 #    and the bridge breaks at the dynamic rupture distance (eq. 33), beyond which the force is 0.
@@ -274,6 +279,18 @@ def mixed(ma, mb):
 
 ck.raises(ValueError, lambda: mixed(material(viscous="pitois"), material(viscous="adams_perchard")), ["viscousNormal", "pitois", "adams_perchard"],
           "different normal viscous laws on the two materials")
+ck.raises(ValueError, lambda: mixed(material(eta=0.1), material(eta=0.0)), ["eta", "0.1", "both"],
+          "a viscous material against one left at eta = 0 (the mean would halve the viscosity)")
+mixed(material(rupture="pitois"), material(rupture="willett+pitois"))
+ck.true(O.interactions[0, 1].phys.rupture == "willett+pitois", "rupture 'pitois' and 'willett+pitois' are the same rule on two materials")
+# A rejected assignment leaves the rule in use as it was: before the fix, the material kept the
+# rejected lian+pitois internally while reading back willett.
+m_bad = material(eta=0.0)
+ck.raises(ValueError, lambda: setattr(m_bad, "rupture", "lian+pitois"), ["rupture", "eta > 0"], "lian+pitois on an inviscid material")
+mixed(m_bad, material(eta=0.0))
+I = O.interactions[0, 1]
+ck.true(m_bad.rupture == "willett" and I.phys.rupture == "willett" and not I.phys.dynamicRupture,
+        "after the rejected assignment the bridge uses willett (got %r, dynamic %s)" % (I.phys.rupture, I.phys.dynamicRupture))
 mixed(material(eta=0.1), material(eta=0.3))
 ck.close(O.interactions[0, 1].phys.eta, 0.2, 1e-15, "eta of two materials", "arithmetic mean, as Vb and gamma")
 ck.finish()
