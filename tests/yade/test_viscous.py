@@ -189,6 +189,26 @@ for speed in (1e-3, 1e-2):
     ck.true(dyn > static * (1 + math.sqrt(speed * ETA / GAMMA)) * (1 - 1e-12) and last_gap > static,
             "v=%g: the bridge outlives its static rupture distance" % speed)
 
+# 3a. The dynamic rule stretches a model's own range too: young_laplace_table breaks between the steps
+#     around its exact rupture distance times 1 + sqrt(v eta / gamma) (eq. 33).
+pair(R, R, material(rupture="willett+pitois", model="young_laplace_table"))
+exact = kernels.bridge("young_laplace_table", R, R, V, GAMMA, THETA)["rupture"]
+speed = 1e-2
+dyn = kernels.dynamic_rupture_distance(exact, speed, ETA, GAMMA)
+O.dt = dyn / speed / 400
+O.bodies[1].state.vel = (speed, 0, 0)
+last_gap, broke_at = None, None
+for _ in range(460):
+    gap = O.bodies[1].state.pos[0] - 2 * R
+    O.step()
+    if gap > 0 and O.forces.f(0)[0] != 0:
+        last_gap = gap
+    elif gap > 0 and broke_at is None:
+        broke_at = gap
+ck.true(last_gap is not None and broke_at is not None and last_gap <= dyn < broke_at and last_gap > exact,
+        "young_laplace_table + pitois: breaks between %.6g and %.6g m, around the stretched exact rupture %.6g m (exact %.6g m)"
+        % (last_gap or 0, broke_at or 0, dyn, exact))
+
 # 3b. O.save/O.load of a live viscous bridge with the dynamic rule: the invariants are rebuilt, the
 #     reloaded run gives the same forces as the uninterrupted one.
 pair(R, R, material(rupture="willett+pitois"))
