@@ -44,6 +44,22 @@ def sub(a, b):
     return [x - y for x, y in zip(a, b)]
 
 
+def cross(a, b):
+    return [a[(k + 1) % 3] * b[(k + 2) % 3] - a[(k + 2) % 3] * b[(k + 1) % 3] for k in range(3)]
+
+
+def on_sphere_at_wall(S, R, vrel, ws):
+    """Kernels' force on a sphere R at gap S from a wall along -x (n from the sphere to the wall),
+    relative velocity vrel of the sphere against the wall at the contact point, spin ws: (force,
+    kernels' tangential dict, force scale)."""
+    nn, inf = [-1.0, 0.0, 0.0], float("inf")
+    vn = sum(a * b for a, b in zip(vrel, nn))
+    fcap = kernels.force("rabinovich", S, R, inf, V, GAMMA, THETA)
+    fn = kernels.viscous_normal_force("pitois", S, vn, R, inf, ETA, V)
+    t = kernels.viscous_tangential(S, nn, vrel, R, inf, ETA, ws, (0, 0, 0))
+    return [(fcap + fn) * nn[k] + t["force"][k] for k in range(3)], t, abs(fcap) + abs(fn)
+
+
 def close_vec(actual, expected, scale, what, source, rtol=1e-9):
     for k in range(3):
         ck.close(actual[k], expected[k], 0, "%s[%d]" % (what, k), source, atol=rtol * scale)
@@ -105,14 +121,7 @@ for loop in ("fused", "standard"):
     O.bodies[1].state.pos = (R + S, 0, 0)
     O.bodies[1].state.vel, O.bodies[1].state.angVel = vs, ws
     O.step()
-    nn = [-1.0, 0.0, 0.0]  # from the sphere to the wall
-    vn = sum(a * b for a, b in zip(vs, nn))
-    inf = float("inf")
-    fcap = kernels.force("rabinovich", S, R, inf, V, GAMMA, THETA)
-    fn = kernels.viscous_normal_force("pitois", S, vn, R, inf, ETA, V)
-    t = kernels.viscous_tangential(S, nn, vs, R, inf, ETA, ws, (0, 0, 0))
-    expect = [(fcap + fn) * nn[k] + t["force"][k] for k in range(3)]
-    scale = abs(fcap) + abs(fn)
+    expect, t, scale = on_sphere_at_wall(S, R, vs, ws)  # the wall is at rest
     close_vec(O.forces.f(1), expect, scale, loop + " wall: force on the sphere", "kernels with R2 = inf")
     close_vec(O.forces.t(1), t["moment1"], R * scale, loop + " wall: moment on the sphere", "R1 n x F1, kernels with R2 = inf")
     ck.true(O.interactions[0, 1].phys.swapped, loop + " wall: body 0 is the wall, so the phys is marked swapped")
@@ -139,23 +148,13 @@ for loop in ("fused", "standard"):
     # moved it after the law).
     cp, fc = I.geom.contactPoint, O.bodies[0].state.pos
     arm = sub(cp, [fc[k] - vf[k] * O.dt for k in range(3)])
-    vwall = [vf[k] + (wf[(k + 1) % 3] * arm[(k + 2) % 3] - wf[(k + 2) % 3] * arm[(k + 1) % 3]) for k in range(3)]
-    vrel = sub(vs, vwall)
-    nn = [-1.0, 0.0, 0.0]
-    vn = sum(a * b for a, b in zip(vrel, nn))
-    inf = float("inf")
-    fcap = kernels.force("rabinovich", S, R, inf, V, GAMMA, THETA)
-    fn = kernels.viscous_normal_force("pitois", S, vn, R, inf, ETA, V)
-    t = kernels.viscous_tangential(S, nn, vrel, R, inf, ETA, ws, (0, 0, 0))
-    expect = [(fcap + fn) * nn[k] + t["force"][k] for k in range(3)]
-    scale = abs(fcap) + abs(fn)
+    vwall = [vf[k] + c for k, c in enumerate(cross(wf, arm))]
+    expect, t, scale = on_sphere_at_wall(S, R, sub(vs, vwall), ws)
     close_vec(O.forces.f(1), expect, scale, loop + " moving facet: force on the sphere", "kernels, v_rel at the contact point")
     close_vec(O.forces.t(1), t["moment1"], R * scale, loop + " moving facet: moment on the sphere", "R1 n x F1")
     # The facet gets the moment of its viscous force at the contact point (the capillary and normal
     # viscous forces of a separated bridge give a body no moment, as without viscosity).
-    ff = [-x for x in t["force"]]
-    expect_t = [arm[(k + 1) % 3] * ff[(k + 2) % 3] - arm[(k + 2) % 3] * ff[(k + 1) % 3] for k in range(3)]
-    close_vec(O.forces.t(0), expect_t, 0.05 * scale, loop + " moving facet: moment on the facet", "(contact point - centre) x its viscous force")
+    close_vec(O.forces.t(0), cross(arm, [-x for x in t["force"]]), 0.05 * scale, loop + " moving facet: moment on the facet", "(contact point - centre) x its viscous force")
 
 # 3. Pull-off at constant speed (Elskamp Fig. 5b setup): F = F_cap(S) + c_n(S) v at every step,
 #    and the bridge breaks at the dynamic rupture distance (eq. 33), beyond which the force is 0.
