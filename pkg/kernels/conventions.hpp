@@ -31,6 +31,14 @@ inline double equivalent_angle(double theta1, double theta2)
 	return theta1 == theta2 ? theta1 : std::acos((std::cos(theta1) + std::cos(theta2)) / 2);
 }
 
+// Volume of a sphere of radius r between two planes at distances d1 <= d2 from its centre (clamped
+// to the sphere) [m^3]: pi (r^2 (d2 - d1) - (d2^3 - d1^3)/3). Splits a bridge's liquid at its neck.
+inline double sphere_slab_volume(double r, double d1, double d2)
+{
+	d1 = std::fmin(std::fmax(d1, -r), r), d2 = std::fmin(std::fmax(d2, -r), r);
+	return pi * (r * r * (d2 - d1) - (d2 * d2 * d2 - d1 * d1 * d1) / 3);
+}
+
 // Derjaguin: a sphere R1 against a plane is equivalent to two equal spheres of radius 2 R1, whose
 // harmonic and geometric means are both 2 R1, so that every model gives the sphere-plane limit
 // F(0) = 4 pi R1 gamma cos(theta).

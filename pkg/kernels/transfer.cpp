@@ -20,12 +20,6 @@ namespace {
 	}
 	// Spherical cap of height d and base radius y: pi d (3 y^2 + d^2)/6 [m^3] (Elskamp2018 eq. 42-43).
 	double cap(double d, double y) { return pi * d * (3 * y * y + d * d) / 6; }
-	// Volume of a sphere of radius r between planes at distances d1 <= d2 from its centre (clamped).
-	double slab(double r, double d1, double d2)
-	{
-		d1 = std::min(std::max(d1, -r), r), d2 = std::min(std::max(d2, -r), r);
-		return pi * (r * r * (d2 - d1) - (d2 * d2 * d2 - d1 * d1 * d1) / 3);
-	}
 
 	// Bisection for the root of a monotone f on [lo, hi] (f(lo), f(hi) of opposite signs).
 	template <class F> double bisect(double lo, double hi, F f)
@@ -127,7 +121,7 @@ ParabolicBridge parabolic_transfer(double R1, double R2, double volume, double S
 	p.x_min         = (p.a > 0 && -p.b / (2 * p.a) > 0 && -p.b / (2 * p.a) < p.length) ? -p.b / (2 * p.a) : (p.c <= yL ? 0.0 : p.length);
 	// Eq. (42) subtracts the whole cap of solid 1; if the neck lies inside the cap's extent (x_min < d1)
 	// only the part of the sphere left of it is solid: the slab of sphere 1 (centre at x = d1 - R1).
-	p.volume1       = parabola_volume(p.a, p.b, p.c, p.x_min) - slab(R1, R1 - p.d1, p.x_min - p.d1 + R1);
+	p.volume1       = parabola_volume(p.a, p.b, p.c, p.x_min) - sphere_slab_volume(R1, R1 - p.d1, p.x_min - p.d1 + R1);
 	p.transfer1     = p.volume1 / volume;
 	return p;
 }

@@ -148,13 +148,6 @@ namespace yl {
 			double volume1 = 0;      // the liquid on solid 1's side of the neck (the rest is on solid 2's side)
 		};
 
-		// Volume of a sphere of radius r between two planes at distances d1 <= d2 from its centre
-		// (clamped to the sphere): pi (r^2 (d2 - d1) - (d2^3 - d1^3)/3).
-		double slab(double r, double d1, double d2)
-		{
-			d1 = std::clamp(d1, -r, r), d2 = std::clamp(d2, -r, r);
-			return pi * (r * r * (d2 - d1) - (d2 * d2 * d2 - d1 * d1 * d1) / 3);
-		}
 
 		// Sphere 1 (radius 1) left of the gap a with filling angle beta1; solid 2 right of it: a sphere
 		// of radius R2 with filling angle s2, or (R2 = inf) a plane with contact-line radius s2.
@@ -186,8 +179,8 @@ namespace yl {
 			// Split at the neck: the liquid between a contact line and the neck is the arc's W minus
 			// the part of that solid between its contact-line plane and the neck plane (the solids'
 			// centres: x = -(a/2 + 1) for sphere 1, -(a/2 + R2) for sphere 2 in its mirrored frame).
-			if (&n == &left) out.volume1 = left.neck_W - slab(1, 1 - h1, left.neck_x + a / 2 + 1);
-			else out.volume1 = out.volume - (right.neck_W - (plane ? 0 : slab(R2, R2 - h2, right.neck_x + a / 2 + R2)));
+			if (&n == &left) out.volume1 = left.neck_W - sphere_slab_volume(1, 1 - h1, left.neck_x + a / 2 + 1);
+			else out.volume1 = out.volume - (right.neck_W - (plane ? 0 : sphere_slab_volume(R2, R2 - h2, right.neck_x + a / 2 + R2)));
 			return out;
 		}
 
