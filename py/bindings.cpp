@@ -1,6 +1,7 @@
 // Python module of the pure capillary kernels (yade_capillary._kernels), re-exported as
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
+#include "film.hpp"
 #include "transfer.hpp"
 #include "viscous.hpp"
 #include "young_laplace.hpp"
@@ -278,6 +279,39 @@ PYBIND11_MODULE(_kernels, m)
 	        "solid 1) [m^3] and transfer1 = volume1/volume.");
 	m.def("diameter_transfer", &diameter_transfer, py::arg("R1"), py::arg("R2"),
 	      "Richefeu2008's transfer ratio R1/(R1 + R2) [-] (1 against a wall, R2 = inf).");
+
+	m.def(
+	        "exact_transfer",
+	        [](double R1, double R2, double volume, double theta1, std::optional<double> theta2) { return exact_transfer(R1, R2, volume, theta1, theta2.value_or(theta1)); },
+	        py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta1") = 0.0, py::arg("theta2") = py::none(),
+	      "The exact transfer ratio T1 [-]: the share of a bridge's liquid on solid 1's side of the neck at the exact rupture "
+	      "(Young-Laplace solver), interpolated in data/transfer_table.csv. R1, R2 [m] (R2 = inf: a plane), volume [m^3], equal "
+	      "contact angles [rad]. Raises ValueError outside the table (V* = V/Rh^3 in [1e-5, 0.1], theta <= 50 deg, "
+	      "R_small/R_large >= 1/4 or a plane).");
+	m.def(
+	        "transfer_ratio",
+	        [](const std::string& rule, double R1, double R2, double volume, double S, double theta1, std::optional<double> theta2) {
+		        return transfer_ratio(transfer_from_name(rule), R1, R2, volume, S, theta1, theta2.value_or(theta1));
+	        },
+	        py::arg("rule"), py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("S"), py::arg("theta1") = 0.0, py::arg("theta2") = py::none(),
+	        "T1 [-] of a transfer rule (PendularMat.transfer: exact, parabolic, diameter) for a bridge of volume [m^3] whose "
+	        "rupture distance is S [m] (used by parabolic only).");
+	m.def(
+	        "transfer_rules",
+	        [] {
+		        py::list out;
+		        for (const auto& t : transfer_rules()) out.append(py::make_tuple(t.name, t.source));
+		        return out;
+	        },
+	        "The transfer rules as (name, source) pairs, in the order of PendularPhys.transferIndex.");
+	m.def("film_contribution", &film_contribution, py::arg("Ri"), py::arg("Rj"), py::arg("film"),
+	      "Shi & McCarthy (Elskamp2018 eq. 8; eq. 9 for Rj = inf, a wall): the liquid [m^3] a sphere of radius Ri [m] with the "
+	      "film [m^3] gives to a new bridge with a solid of radius Rj [m].");
+	m.def("wall_film_contribution", &wall_film_contribution, py::arg("Ri"), py::arg("W"),
+	      "Elskamp2018 eq. (10): the liquid [m^3] a wall with the film thickness W [m] gives to a new bridge with a sphere of "
+	      "radius Ri [m]: W pi/4 Ri^2.");
+	m.def("film_thickness", &film_thickness, py::arg("R"), py::arg("film"),
+	      "Elskamp2018 eq. (34): the thickness [m] of the film [m^3] on a sphere of radius R [m]: (3 film/(4 pi) + R^3)^(1/3) - R.");
 
 	m.def("dynamic_rupture_distance", &dynamic_rupture_distance, py::arg("static"), py::arg("v_rel"), py::arg("eta"), py::arg("gamma"),
 	      "Dynamic rupture distance [m] (Pitois et al., Elskamp2018 eq. 33): static * (1 + sqrt(|v_rel| eta / gamma)). "

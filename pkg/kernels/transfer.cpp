@@ -127,3 +127,41 @@ ParabolicBridge parabolic_transfer(double R1, double R2, double volume, double S
 }
 
 } // namespace capillary
+
+namespace capillary {
+
+namespace {
+	const std::array<TransferInfo, 3> transfer_table = { {
+	        { Transfer::exact, "exact", "Young-Laplace solver: the split at the neck at the exact rupture, tabulated (data/transfer_table.csv)" },
+	        { Transfer::parabolic, "parabolic", "Elskamp2018 eq. 35-43 (parabolic meniscus at the rupture distance)" },
+	        { Transfer::diameter, "diameter", "Richefeu2008: in proportion to the diameters" },
+	} };
+} // namespace
+
+const std::array<TransferInfo, 3>& transfer_rules() { return transfer_table; }
+
+std::string transfer_names()
+{
+	std::string out;
+	for (const auto& t : transfer_table) out += (out.empty() ? "" : ", ") + std::string(t.name);
+	return out;
+}
+
+Transfer transfer_from_name(const std::string& name)
+{
+	for (const auto& t : transfer_table)
+		if (name == t.name) return t.rule;
+	throw std::invalid_argument("transfer = '" + name + "' is unknown; allowed: " + transfer_names());
+}
+
+double transfer_ratio(Transfer rule, double R1, double R2, double volume, double S, double theta1, double theta2)
+{
+	switch (rule) {
+		case Transfer::exact: return exact_transfer(R1, R2, volume, theta1, theta2);
+		case Transfer::parabolic: return parabolic_transfer(R1, R2, volume, S, theta1, theta2).transfer1;
+		case Transfer::diameter: return diameter_transfer(R1, R2);
+	}
+	throw std::invalid_argument("transfer: unknown enumerator " + std::to_string(int(rule)));
+}
+
+} // namespace capillary

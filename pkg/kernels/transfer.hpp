@@ -9,8 +9,10 @@
 //                       (eq. 42).
 //   diameter_transfer   Richefeu2008: in proportion to the diameters, T1 = R1/(R1 + R2) (a wall, which
 //                       has no diameter, gets nothing).
-// The exact ratio is the Young-Laplace solver's split at the neck (yl::Solution::volume1 / volume at
-// the rupture gap).
+//   exact_transfer      the Young-Laplace solver's split at the neck at the exact rupture gap
+//                       (yl::Solution::volume1 / volume there), tabulated on the nodes of
+//                       young_laplace_table (data/transfer_table.csv, tools/generate_transfer_table.cpp)
+//                       and interpolated like it.
 //
 // Deviations from the printed equations: eq. (40) is printed with + atan(y'(d_lb)); the mirror image
 // of eq. (39) for the solid on the right is theta_j = pi/2 - atan(Y'(d_lb)) - asin(y(d_lb)/r_j) (with
@@ -21,6 +23,9 @@
 #pragma once
 
 #include "conventions.hpp"
+
+#include <array>
+#include <string>
 
 namespace capillary {
 
@@ -41,5 +46,24 @@ ParabolicBridge parabolic_transfer(double R1, double R2, double volume, double S
 
 // Richefeu2008: T1 = R1/(R1 + R2), 1 against a wall.
 double diameter_transfer(double R1, double R2);
+
+// The exact T1 of a bridge of volume V [m^3] between R1 and R2 (R2 = wall_radius: a plane) with equal
+// contact angles theta1 = theta2 [rad], at its exact rupture. Throws std::invalid_argument outside the
+// table (V* = V/Rh^3 in [1e-5, 0.1], theta <= 50 deg, R_small/R_large >= 1/4 or a plane).
+double exact_transfer(double R1, double R2, double volume, double theta1, double theta2);
+
+// The rules, selected once by index (PendularMat.transfer).
+enum class Transfer { exact, parabolic, diameter };
+struct TransferInfo {
+	Transfer    rule;
+	const char* name;
+	const char* source;
+};
+const std::array<TransferInfo, 3>& transfer_rules();
+Transfer    transfer_from_name(const std::string& name); // std::invalid_argument listing the names
+std::string transfer_names();
+// T1 of the rule for a bridge of volume V [m^3] whose rupture distance is S [m] (parabolic: the
+// parabola at S; exact: the exact rupture, S unused; diameter: neither).
+double transfer_ratio(Transfer rule, double R1, double R2, double volume, double S, double theta1, double theta2);
 
 } // namespace capillary

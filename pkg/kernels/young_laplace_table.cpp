@@ -52,21 +52,22 @@ namespace yltable {
 			return std::clamp(i - 1, first, first + count - 4);
 		}
 
-		[[noreturn]] void outside(const std::string& what) { throw std::invalid_argument("young_laplace_table: " + what + "; the exact solver (YoungLaplaceBridge) has no such limit"); }
-
 	} // namespace
 
-	Curve curve(double R1, double R2, double volume, double gamma, double theta1, double theta2)
+	Stencil locate(const char* table, double R1, double R2, double volume, double theta1, double theta2)
 	{
-		static const bool nodes_ok = checked_nodes();
-		(void)nodes_ok;
+		const auto outside = [table](const std::string& what) {
+			throw std::invalid_argument(std::string(table) + ": " + what + "; the exact solver (YoungLaplaceBridge) has no such limit");
+		};
 		const bool   plane = is_wall(R2);
 		const double rs = plane ? R1 : std::min(R1, R2), rl = plane ? R1 : std::max(R1, R2);
 		const double rho = plane ? 0 : rs / rl;
 		double       r1, r2;
 		equivalent_pair(R1, R2, r1, r2);
-		const double Rh = harmonic_mean_radius(r1, r2);
-		const double lnv = std::log(volume / (Rh * Rh * Rh));
+		Stencil s;
+		s.Rh              = harmonic_mean_radius(r1, r2);
+		s.small_first     = plane || R1 <= R2;
+		const double lnv = std::log(volume / (s.Rh * s.Rh * s.Rh));
 		if (!(std::abs(theta1 - theta2) <= 1e-12)) outside("theta1 = " + format_value(theta1) + " and theta2 = " + format_value(theta2) + " rad differ; the table holds equal contact angles");
 		if (!(lnv >= lnv_min - 1e-12 && lnv <= lnv_max + 1e-12))
 			outside("V* = V/Rh^3 = " + format_value(std::exp(lnv)) + " is outside the table's range [1e-5, 0.1]");
@@ -74,32 +75,36 @@ namespace yltable {
 		if (!(plane || rho >= rho_nodes[1] - 1e-12))
 			outside("R_small/R_large = " + format_value(rho) + " is outside the table's range [1/4, 1] (or a plane)");
 
-		double xs[4], wv[4], wt[4], wr[4] = { 1, 0, 0, 0 };
 		std::array<double, n_lnv>   lnvs;
 		std::array<double, n_theta> thetas;
 		for (int i = 0; i < n_lnv; ++i) lnvs[i] = lnv_node(i);
 		for (int i = 0; i < n_theta; ++i) thetas[i] = theta_node(i);
-		const int i0 = stencil(lnvs.data(), 0, n_lnv, lnv), j0 = stencil(thetas.data(), 0, n_theta, theta1);
-		lagrange(&lnvs[i0], lnv, wv);
-		lagrange(&thetas[j0], theta1, wt);
+		s.i0 = stencil(lnvs.data(), 0, n_lnv, lnv), s.j0 = stencil(thetas.data(), 0, n_theta, theta1);
+		lagrange(&lnvs[s.i0], lnv, s.wv);
+		lagrange(&thetas[s.j0], theta1, s.wt);
 		// A plane uses its own slice; spheres interpolate over rho in [1/4, 1], in sqrt(1 - rho).
-		int k0 = 0, nk = 1;
 		if (!plane) {
-			k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), nk = 4;
-			for (int c = 0; c < 4; ++c) xs[c] = std::sqrt(1 - rho_nodes[k0 + c]);
-			lagrange(xs, std::sqrt(std::max(0.0, 1 - rho)), wr);
+			double xs[4];
+			s.k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), s.nk = 4;
+			for (int c = 0; c < 4; ++c) xs[c] = std::sqrt(1 - rho_nodes[s.k0 + c]);
+			lagrange(xs, std::sqrt(std::max(0.0, 1 - rho)), s.wr);
 		}
+		return s;
+	}
+
+	Curve curve(double R1, double R2, double volume, double gamma, double theta1, double theta2)
+	{
+		static const bool nodes_ok = checked_nodes();
+		(void)nodes_ok;
+		const Stencil               s = locate("young_laplace_table", R1, R2, volume, theta1, theta2);
 		std::array<double, row_len> v {};
-		for (int a = 0; a < 4; ++a)
-			for (int b = 0; b < 4; ++b)
-				for (int c = 0; c < nk; ++c) {
-					const double  weight = wv[a] * wt[b] * wr[c];
-					const double* r      = row(i0 + a, j0 + b, k0 + c);
-					for (int m = 3; m < row_len; ++m) v[m] += weight * r[m];
-				}
+		for_each_node(s, [&v](double weight, int i, int j, int k) {
+			const double* r = row(i, j, k);
+			for (int m = 3; m < row_len; ++m) v[m] += weight * r[m];
+		});
 		Curve out;
-		out.rupture = Rh * std::exp(v[3]);
-		for (int m = 0; m < n_w; ++m) out.force[m] = 2 * pi * Rh * gamma * std::exp(v[4 + m]);
+		out.rupture = s.Rh * std::exp(v[3]);
+		for (int m = 0; m < n_w; ++m) out.force[m] = 2 * pi * s.Rh * gamma * std::exp(v[4 + m]);
 		return out;
 	}
 

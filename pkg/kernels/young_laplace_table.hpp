@@ -39,6 +39,26 @@ namespace yltable {
 		return 1 - w * w;
 	}
 
+	// Where a bridge lies among the nodes: cubic Lagrange stencils in ln V*, theta and sqrt(1 - rho)
+	// (a plane has its own slice, nk = 1). Shared by the force table and the exact transfer table
+	// (transfer_table.cpp), which have the same nodes.
+	struct Stencil {
+		int    i0 = 0, j0 = 0, k0 = 0, nk = 1; // first node of each stencil; nodes in rho
+		double wv[4] {}, wt[4] {}, wr[4] = { 1, 0, 0, 0 };
+		double Rh = 0;            // harmonic mean radius of the pair (2 R1 against a plane) [m]
+		bool   small_first = true; // solid 1 is the smaller sphere (or the sphere against a plane)
+	};
+	// Throws std::invalid_argument, worded "<table>: <variable> ... is outside the table's range ...",
+	// for a bridge outside the nodes (V*, theta, rho) or with unequal contact angles.
+	Stencil locate(const char* table, double R1, double R2, double volume, double theta1, double theta2);
+	// f(weight, i, j, k) for every node of the stencil.
+	template <class F> void for_each_node(const Stencil& s, const F& f)
+	{
+		for (int a = 0; a < 4; ++a)
+			for (int b = 0; b < 4; ++b)
+				for (int c = 0; c < s.nk; ++c) f(s.wv[a] * s.wt[b] * s.wr[c], s.i0 + a, s.j0 + b, s.k0 + c);
+	}
+
 	// Interpolated curve of one bridge: force [N] at the tau nodes and the rupture gap [m].
 	struct Curve {
 		std::array<double, n_w> force;

@@ -27,18 +27,25 @@ Viscous bridge forces (Elskamp 2018 eq. 25-29, 33; PendularMat.eta in YADE):
 ``dynamic_rupture_distance(static, v_rel, eta, gamma)``.
 
 Where the liquid of a breaking bridge goes (the transfer ratio to solid 1): exactly, the solver's
-``YoungLaplaceBridge(...).solve(rupture_gap, gamma)["volume1"] / volume``; Elskamp 2018's parabolic
-bridge ``parabolic_transfer(R1, R2, volume, S, theta1, theta2)``; Richefeu 2008's
-``diameter_transfer(R1, R2)``.
+``YoungLaplaceBridge(...).solve(rupture_gap, gamma)["volume1"] / volume``, tabulated as
+``exact_transfer(R1, R2, volume, theta)``; Elskamp 2018's parabolic bridge
+``parabolic_transfer(R1, R2, volume, S, theta1, theta2)``; Richefeu 2008's ``diameter_transfer(R1, R2)``;
+``transfer_ratio(rule, ...)`` by name (``TRANSFER_NAMES``, PendularMat.transfer in YADE).
+
+Liquid carried by the particles (PendularMat.liquid = 'film'; Elskamp 2018 eq. 7-10, 34 after Shi &
+McCarthy): ``film_contribution(Ri, Rj, film)``, ``wall_film_contribution(Ri, W)``, ``film_thickness(R, film)``.
 """
-from ._kernels import (YoungLaplaceBridge, bridge, diameter_transfer, dynamic_rupture_distance, force, models,  # compiled module
-                       parabolic_transfer, rupture_distance, rupture_rules, table_axes, viscous_laws, viscous_normal_force,
+from ._kernels import (YoungLaplaceBridge, bridge, diameter_transfer, dynamic_rupture_distance, exact_transfer,  # compiled module
+                       film_contribution, film_thickness, force, models, parabolic_transfer, transfer_ratio, transfer_rules,
+                       wall_film_contribution, rupture_distance, rupture_rules, table_axes, viscous_laws, viscous_normal_force,
                        viscous_tangential, willett_coefficients)
 
-__all__ = ["YoungLaplaceBridge", "bridge", "diameter_transfer", "dynamic_rupture_distance", "force", "parabolic_transfer", "models", "rupture_distance", "rupture_rules",
+__all__ = ["YoungLaplaceBridge", "bridge", "diameter_transfer", "dynamic_rupture_distance", "exact_transfer", "film_contribution",
+           "film_thickness", "force", "parabolic_transfer", "transfer_ratio", "transfer_rules", "wall_film_contribution", "models", "rupture_distance", "rupture_rules",
            "table_axes", "viscous_laws", "viscous_normal_force", "viscous_tangential", "willett_coefficients", "MODEL_NAMES",
-           "RUPTURE_NAMES", "VISCOUS_NAMES"]
+           "RUPTURE_NAMES", "VISCOUS_NAMES", "TRANSFER_NAMES"]
 
 MODEL_NAMES = [m["name"] for m in models()]
 RUPTURE_NAMES = [r[0] for r in rupture_rules()]
 VISCOUS_NAMES = [r[0] for r in viscous_laws()]
+TRANSFER_NAMES = [r[0] for r in transfer_rules()]

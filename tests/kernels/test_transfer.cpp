@@ -75,3 +75,38 @@ TEST(Transfer, DiametersAndBadInput)
 	EXPECT_THROW(parabolic_transfer(1e-3, 1e-3, 1e-12, std::nan(""), 0.1, 0.1), std::invalid_argument);
 	EXPECT_THROW(parabolic_transfer(1e-3, 1e-3, 1e-12, 1.0, 0.1, 0.1), std::runtime_error); // far beyond any bridge
 }
+
+// The exact transfer table against the solver away from the nodes (between nodes in every axis), and
+// its limits: equal spheres split in halves; the rule of an exchanged pair is 1 - T1.
+TEST(Transfer, ExactTableAgainstSolver)
+{
+	struct Row {
+		double R1, R2, vstar, theta;
+	};
+	double worst = 0;
+	for (const Row& r : { Row { 1e-3, 1e-3, 3e-4, 0.2 }, Row { 1e-3, 2.7e-3, 2e-3, 0.05 }, Row { 3.1e-3, 1e-3, 4e-5, 0.61 }, Row { 1e-3, 1.3e-3, 0.07, 0.4 },
+	                      Row { 1e-3, inf, 5e-4, 0.3 }, Row { 2e-3, inf, 0.02, 0.0 }, Row { 1e-3, 3.9e-3, 1.5e-5, 0.8 } }) {
+		const double Rh = is_wall(r.R2) ? 2 * r.R1 : harmonic_mean_radius(r.R1, r.R2), V = r.vstar * Rh * Rh * Rh;
+		const yl::Bridge   b(r.R1, r.R2, V, r.theta);
+		const yl::Solution s = b.solve(b.rupture_gap(), 0.07);
+		const double       exact = s.volume1 / s.volume, table = exact_transfer(r.R1, r.R2, V, r.theta, r.theta);
+		worst = std::max(worst, std::abs(table - exact));
+		EXPECT_NEAR(table, exact, 2e-4) << r.R1 << " " << r.R2 << " " << r.vstar << " " << r.theta;
+		if (!is_wall(r.R2) && r.R1 != r.R2) EXPECT_NEAR(exact_transfer(r.R2, r.R1, V, r.theta, r.theta), 1 - table, 1e-15);
+		if (r.R1 == r.R2) EXPECT_NEAR(table, 0.5, 1e-6);
+	}
+	std::printf("exact transfer table: largest deviation from the solver %.2e\n", worst);
+	// Elskamp2018 Fig. 7 trends: the larger sphere gets more, and more so as V* rises.
+	const double R = 1e-3, Rh = harmonic_mean_radius(R, 2 * R);
+	double       last = 1;
+	for (double vstar : { 1e-5, 1e-4, 1e-3, 1e-2, 0.1 }) {
+		const double small = exact_transfer(R, 2 * R, vstar * Rh * Rh * Rh, 0.3, 0.3);
+		EXPECT_LT(small, 0.5);
+		EXPECT_LT(small, last);
+		last = small;
+	}
+	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 1e-9, 0.2, 0.3), std::invalid_argument); // unequal angles
+	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 1e-6, 0.2, 0.2), std::invalid_argument); // V* = 0.125 > 0.1
+	EXPECT_THROW(transfer_from_name("half"), std::invalid_argument);
+	EXPECT_EQ(transfer_ratio(Transfer::diameter, 1e-3, 3e-3, 1e-12, 1e-4, 0, 0), 0.25);
+}
