@@ -7,6 +7,8 @@
 #include <boost/python/exception_translator.hpp>
 #include <boost/python/raw_function.hpp>
 #include <boost/weak_ptr.hpp>
+#include <algorithm>
+#include <unordered_map>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -14,7 +16,7 @@
 
 namespace yade {
 
-YADE_PLUGIN((PendularMat)(PendularPhys)(Ip2_PendularMat_PendularMat_PendularPhys)(Law2_ScGeom_PendularPhys_Bridge)(PendularCheck));
+YADE_PLUGIN((PendularState)(PendularMat)(PendularPhys)(Ip2_PendularMat_PendularMat_PendularPhys)(Law2_ScGeom_PendularPhys_Bridge)(PendularCheck));
 CREATE_LOGGER(Ip2_PendularMat_PendularMat_PendularPhys);
 CREATE_LOGGER(PendularCheck);
 
@@ -101,6 +103,22 @@ namespace {
 		if (PyObject_IsTrue(wait.ptr()) == 1) deliverMissed();
 		return result;
 	}
+	// BodyContainer.erase(self, id, ...): the liquid of the body is accounted for first (see
+	// Law2_ScGeom_PendularPhys_Bridge::eraseBody) by every law of the current scene.
+	py::object* yadeErase = nullptr;
+	py::object  guardedErase(py::tuple args, py::dict kw)
+	{
+		if (py::len(args) > 1) {
+			py::extract<int> id(args[1]);
+			const auto&      scene = Omega::instance().getScene();
+			if (id.check() && scene)
+				for (const auto& engine : scene->engines)
+					if (const auto loop = YADE_PTR_DYN_CAST<InteractionLoop>(engine))
+						for (const auto& functor : loop->lawDispatcher->functors)
+							if (const auto law = YADE_PTR_DYN_CAST<Law2_ScGeom_PendularPhys_Bridge>(functor)) law->eraseBody(scene.get(), id());
+		}
+		return (*yadeErase)(*args, **kw);
+	}
 	py::object guardedWait(py::tuple args, py::dict kw)
 	{
 		py::object result = (*yadeWait)(*args, **kw);
@@ -174,6 +192,14 @@ void PendularCheck::action()
 	for (const auto& engine : scene->engines) {
 		const auto loop = YADE_PTR_DYN_CAST<InteractionLoop>(engine);
 		if (!loop) continue;
+		for (const auto& functor : loop->lawDispatcher->functors)
+			if (const auto law = YADE_PTR_DYN_CAST<Law2_ScGeom_PendularPhys_Bridge>(functor)) {
+				try {
+					law->settleFilms(scene);
+				} catch (const std::invalid_argument& e) {
+					if (message.empty()) message = e.what();
+				}
+			}
 		for (const auto& functor : loop->physDispatcher->functors) {
 			const auto ip2 = YADE_PTR_DYN_CAST<Ip2_PendularMat_PendularMat_PendularPhys>(functor);
 			if (!ip2) continue;
@@ -226,6 +252,12 @@ void PendularCheck::guardOmega(boost::python::object wrapper)
 	// Plain attribute assignment (Boost.Python's add_to_namespace would add an overload instead).
 	omega.attr("run")  = run;
 	omega.attr("wait") = wait;
+	py::object bodies = wrapper.attr("BodyContainer");
+	yadeErase         = new py::object(bodies.attr("erase"));
+	py::object erase  = py::raw_function(guardedErase, 1);
+	erase.attr("__doc__") = std::string(py::extract<std::string>(yadeErase->attr("__doc__")))
+	        + "\n(yade-capillary: a body's film and its share of its bridges go to Law2_ScGeom_PendularPhys_Bridge.liquidRemoved, its partners' shares to their films.)";
+	bodies.attr("erase") = erase;
 }
 
 namespace {
@@ -299,15 +331,15 @@ namespace {
 PendularMat::Checked PendularMat::checked() const
 {
 	return { tc,    en,         et,       kn,  cn,          ks,  cs,             frictionAngle, Vb,    gamma,   theta,
-		 linearFmax, linearKc, eta, viscousSmin, wet, forceInContact, extrapolate,   model, rupture, calibrateFrom, viscousNormal };
+		 linearFmax, linearKc, eta, viscousSmin, wet, forceInContact, extrapolate,   model, rupture, calibrateFrom, viscousNormal, liquid, formation, transfer };
 }
 
 void PendularMat::restore(const Checked& c)
 {
 	std::tie(tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, eta, viscousSmin)
 	        = std::tie(c.tc, c.en, c.et, c.kn, c.cn, c.ks, c.cs, c.frictionAngle, c.Vb, c.gamma, c.theta, c.linearFmax, c.linearKc, c.eta, c.viscousSmin);
-	std::tie(wet, forceInContact, extrapolate, model, rupture, calibrateFrom, viscousNormal)
-	        = std::tie(c.wet, c.forceInContact, c.extrapolate, c.model, c.rupture, c.calibrateFrom, c.viscousNormal);
+	std::tie(wet, forceInContact, extrapolate, model, rupture, calibrateFrom, viscousNormal, liquid, formation, transfer)
+	        = std::tie(c.wet, c.forceInContact, c.extrapolate, c.model, c.rupture, c.calibrateFrom, c.viscousNormal, c.liquid, c.formation, c.transfer);
 }
 
 void PendularMat::postLoad(PendularMat&)
@@ -361,6 +393,15 @@ void PendularMat::validate()
 	} catch (const std::invalid_argument&) {
 		throw std::invalid_argument(c + ".viscousNormal = '" + viscousNormal + "' is unknown; allowed: " + capillary::normal_viscous_names());
 	}
+	if (liquid != "fixed" && liquid != "film") throw std::invalid_argument(c + ".liquid = '" + liquid + "' is unknown; allowed: fixed, film");
+	if (formation != "contact" && formation != "films")
+		throw std::invalid_argument(c + ".formation = '" + formation + "' is unknown; allowed: contact, films (when the liquid films touch)");
+	capillary::Transfer newTransfer;
+	try {
+		newTransfer = capillary::transfer_from_name(transfer);
+	} catch (const std::invalid_argument& e) {
+		throw std::invalid_argument(c + "." + e.what());
+	}
 	if (wet && parsed.second && !(eta > 0))
 		throw std::invalid_argument(c + ".rupture = '" + rupture + "' (Pitois' dynamic rupture distance, Elskamp2018 eq. 33) needs eta > 0; eta = "
 		                            + capillary::format_value(eta) + " Pa s (set eta before rupture, or use a static rule: "
@@ -387,6 +428,28 @@ void PendularMat::validate()
 	ruptureId      = parsed.first;
 	dynamicRupture = parsed.second;
 	viscousId      = newViscous;
+	filmMode       = liquid == "film";
+	filmFormation  = formation == "films";
+	transferId     = newTransfer;
+}
+
+void PendularState::postLoad(PendularState&)
+{
+	const auto refuse = [this](const char* name, Real value) {
+		film     = lastFilm;
+		filmArea = lastFilmArea;
+		capillary::out_of_range(std::string("PendularState.") + name, value, "[0, inf)", name == std::string("film") ? "m^3" : "m^2");
+	};
+	if (!(film >= 0 && math::isfinite(film))) refuse("film", film);
+	if (!(filmArea >= 0 && math::isfinite(filmArea))) refuse("filmArea", filmArea);
+	lastFilm     = film;
+	lastFilmArea = filmArea;
+}
+
+Real PendularState::thickness(Real R) const
+{
+	if (!math::isinf(R)) return capillary::film_thickness(R, film);
+	return filmArea > 0 ? film / filmArea : 0;
 }
 
 std::string PendularPhys::modelName() const { return modelIndex < 0 ? "" : capillary::name_of(capillary::Model(modelIndex)); }
@@ -395,6 +458,7 @@ std::string PendularPhys::ruptureName() const
 	return ruptureIndex < 0 ? "" : std::string(capillary::name_of(capillary::Rupture(ruptureIndex))) + (dynamicRupture ? "+pitois" : "");
 }
 std::string PendularPhys::viscousName() const { return viscousIndex < 0 ? "" : capillary::name_of(capillary::NormalViscous(viscousIndex)); }
+std::string PendularPhys::transferName() const { return transferIndex < 0 ? "" : capillary::transfer_rules()[transferIndex].name; }
 std::string PendularPhys::calibrateName() const { return calibrateIndex < 0 ? "" : capillary::name_of(capillary::Model(calibrateIndex)); }
 
 void PendularPhys::buildBridge()
@@ -412,7 +476,8 @@ void PendularPhys::buildBridge()
 
 void PendularPhys::postLoad(PendularPhys&)
 {
-	if (wet && modelIndex >= 0) buildBridge(); // after O.load: the cached invariants are not serialized
+	// After O.load: the cached invariants are not serialized (a film-mode bridge has them once formed).
+	if (wet && modelIndex >= 0 && (!film || active)) buildBridge();
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
@@ -590,8 +655,56 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		phys->viscousIndex   = phys->eta > 0 ? int(m1.viscousId) : -1;
 		phys->viscousSmin    = m1.viscousSmin;
 		phys->dynamicRupture = m1.dynamicRupture; // both wet: validated with eta > 0
-		phys->buildBridge();
+		if (m1.filmMode != m2.filmMode) mustMatch("liquid", m1.liquid, m2.liquid);
+		if (!m1.filmMode) {
+			phys->buildBridge();
+			return;
+		}
+		mustMatch("formation", m1.formation, m2.formation);
+		mustMatch("transfer", m1.transfer, m2.transfer);
+		setFilm(phys, m1, body1, body2);
 	}
+}
+
+// Film mode: the volume range of the pair's bridges, checked once with the largest (model, contact
+// angles, size ratio, transfer rule); the bridge itself is built when it forms (settleFilms).
+void Ip2_PendularMat_PendularMat_PendularPhys::setFilm(
+        const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const
+{
+	for (const auto& b : { body1, body2 })
+		if (!dynamic_cast<const PendularState*>(b->state.get()))
+			throw std::invalid_argument("PendularMat.liquid = 'film' needs a PendularState on body " + std::to_string(b->id) + ", which has a "
+			                            + b->state->getClassName() + " (create it with utils.sphere(..., material=mat) or give it mat.newAssocState())");
+	bool checked = false;
+	for (const auto& e : scene->engines)
+		if (dynamic_cast<const PendularCheck*>(e.get())) checked = true;
+	if (!checked)
+		throw std::invalid_argument("PendularMat.liquid = 'film' needs a PendularCheck engine after the interaction loop, which forms the bridges and "
+		                            "moves the liquid at the end of each step (yade_capillary.scene.engines adds it)");
+	phys->film          = true;
+	phys->filmFormation = m1.filmFormation;
+	phys->transferIndex = int(m1.transferId);
+	// V* range: the model's domain (Plausible with extrapolate), and the exact transfer table's.
+	const capillary::Pair          pair = capillary::pair_of(specOf(*phys));
+	const capillary::Domain&       d    = capillary::info(capillary::Model(phys->modelIndex)).domain;
+	Real vstarMin = phys->extrapolate ? capillary::Plausible::vstar_min : d.vstar_min, vstarMax = phys->extrapolate ? capillary::Plausible::vstar_max : d.vstar_max;
+	if (m1.transferId == capillary::Transfer::exact) {
+		vstarMin = math::max(vstarMin, math::exp(capillary::yltable::lnv_min));
+		vstarMax = math::min(vstarMax, math::exp(capillary::yltable::lnv_max));
+	}
+	const Real R3 = pair.R * pair.R * pair.R;
+	phys->VbMin   = vstarMin * R3;
+	phys->VbMax   = math::min(phys->Vb, vstarMax * R3);
+	if (!(phys->VbMax >= phys->VbMin))
+		capillary::out_of_range("PendularMat.Vb", phys->Vb, "[" + capillary::format_value(phys->VbMin) + ", inf) for this pair", "m^3",
+		                        "with liquid='film' Vb is the largest bridge volume; the smallest is V* = " + capillary::format_value(vstarMin)
+		                                + " times R^3 (the domain of the model and of the transfer rule)");
+	// The largest bridge checks everything but its volume: model, angles, ratio, transfer rule.
+	phys->Vb = phys->VbMax;
+	phys->buildBridge();
+	capillary::transfer_ratio(capillary::Transfer(phys->transferIndex), phys->R1, phys->R2, phys->Vb, phys->bridge.rupture, phys->theta1, phys->theta2);
+	phys->Vb = 0;
+	phys->viscous.reset();
 }
 
 namespace {
@@ -616,6 +729,146 @@ namespace {
 	};
 } // namespace
 
+namespace {
+	PendularState& filmOf(Scene* scene, Body::id_t id) { return static_cast<PendularState&>(*Body::byId(id, scene)->state); }
+} // namespace
+
+// The sphere R1 is body 1 unless swapped; the other body is a sphere R2 or a wall (R2 = inf).
+bool Law2_ScGeom_PendularPhys_Bridge::filmsTouch(const PendularPhys& phys, const PendularKinematics& k, Real gap) const
+{
+	const PendularState& sphere = filmOf(scene, phys.swapped ? k.id2 : k.id1);
+	const PendularState& other  = filmOf(scene, phys.swapped ? k.id1 : k.id2);
+	return gap <= sphere.thickness(phys.R1) + other.thickness(phys.R2);
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::askFormation(PendularPhys& phys, const PendularKinematics& k)
+{
+	// Shi & McCarthy (Elskamp2018 eq. 8; eq. 9-10 with a wall) from the films at the start of the step.
+	const PendularState& sphere = filmOf(scene, phys.swapped ? k.id2 : k.id1);
+	const PendularState& other  = filmOf(scene, phys.swapped ? k.id1 : k.id2);
+	const Real           fromSphere = capillary::film_contribution(phys.R1, phys.R2, sphere.film);
+	const Real           fromOther  = math::isinf(phys.R2) ? capillary::wall_film_contribution(phys.R1, other.thickness(phys.R2))
+	                                                       : capillary::film_contribution(phys.R2, phys.R1, other.film);
+	// Too little liquid for a bridge (even before sharing the films): no request, the pair stays dry.
+	if (!(fromSphere + fromOther >= phys.VbMin)) return;
+	phys.pending = true;
+	const std::lock_guard<std::mutex> lock(filmMutex);
+	formations.push_back({ &phys, k.id1, k.id2, phys.swapped ? fromOther : fromSphere, phys.swapped ? fromSphere : fromOther, k.owned });
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::settleFilms(Scene* current)
+{
+	if (formations.empty() && returns.empty()) return;
+	// In the order of the pairs, whatever the order of the threads: a run is reproducible.
+	std::sort(formations.begin(), formations.end(), [](const FilmFormation& a, const FilmFormation& b) {
+		return std::make_pair(a.id1, a.id2) < std::make_pair(b.id1, b.id2);
+	});
+	// A film asked for more than it holds is shared in proportion to the requests (Elskamp2018
+	// section 2.2.1: all the bridges of one step form under the same conditions).
+	std::unordered_map<Body::id_t, Real> demand;
+	for (const auto& f : formations) {
+		demand[f.id1] += f.take1;
+		demand[f.id2] += f.take2;
+	}
+	std::unordered_map<Body::id_t, Real> share;
+	for (const auto& d : demand) {
+		const Real film  = filmOf(current, d.first).film;
+		share[d.first] = d.second > film ? film / d.second : 1;
+	}
+	std::string error;
+	for (const auto& f : formations) {
+		PendularPhys&  phys = *f.phys;
+		PendularState& s1   = filmOf(current, f.id1);
+		PendularState& s2   = filmOf(current, f.id2);
+		phys.pending        = false;
+		Real v1 = f.take1 * share[f.id1], v2 = f.take2 * share[f.id2];
+		if (v1 + v2 > phys.VbMax) { // capped: the rest stays on the films
+			const Real scale = phys.VbMax / (v1 + v2);
+			v1 *= scale;
+			v2 *= scale;
+		}
+		v1 = math::min(v1, s1.film); // the shares hold to rounding: never more than the film
+		v2 = math::min(v2, s2.film);
+		if (!(v1 + v2 >= phys.VbMin)) continue;
+		phys.Vb = v1 + v2;
+		try {
+			phys.buildBridge();
+			phys.transfer1 = capillary::transfer_ratio(
+			        capillary::Transfer(phys.transferIndex), phys.R1, phys.R2, phys.Vb, phys.bridge.rupture, phys.theta1, phys.theta2);
+		} catch (const std::exception& e) {
+			phys.Vb = 0;
+			if (error.empty()) error = std::string(e.what()) + " (bridge " + std::to_string(f.id1) + "-" + std::to_string(f.id2) + " not formed)";
+			continue;
+		}
+		s1.film -= v1;
+		s2.film -= v2;
+		phys.active = true;
+		if (f.owned) {
+			nBridges += 1;
+			liquidVolume += phys.Vb;
+			liquidFormed += phys.Vb;
+		}
+	}
+	formations.clear();
+	for (const auto& r : returns) {
+		if (current->bodies->exists(r.id)) filmOf(current, r.id).film += r.volume;
+		else liquidRemoved += r.volume;
+	}
+	returns.clear();
+	if (!error.empty()) throw std::invalid_argument(error);
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::eraseBody(Scene* current, Body::id_t id)
+{
+	if (!current->bodies->exists(id)) return;
+	const shared_ptr<Body>& body  = (*current->bodies)[id];
+	const auto*             state = dynamic_cast<PendularState*>(body->state.get());
+	for (const auto& entry : body->intrs) {
+		const shared_ptr<Interaction>& I    = entry.second;
+		auto*                          phys = dynamic_cast<PendularPhys*>(I->phys.get());
+		if (!phys || !phys->active) continue;
+		const Body::id_t id1 = I->getId1(), id2 = I->getId2();
+		const Body&      b1 = *Body::byId(id1, current);
+		const Body&      b2 = *Body::byId(id2, current);
+		if (pendularOwner(current->subdomain, b1.subdomain, b2.subdomain)) {
+			nBridges -= 1;
+			liquidVolume -= phys->Vb;
+			liquidReleased += phys->Vb;
+		}
+		phys->active = false; // the interaction goes with the body in the next step
+		if (!phys->film) continue;
+		// As a rupture: the partner keeps its share if it holds liquid; the rest leaves with the body.
+		const Body::id_t sphere = phys->swapped ? id2 : id1, other = phys->swapped ? id1 : id2;
+		const bool       otherHolds = filmOf(current, other).holds(phys->R2);
+		const Real       toSphere = otherHolds ? phys->transfer1 * phys->Vb : phys->Vb;
+		const Body::id_t partner = id1 == id ? id2 : id1;
+		const Real       toPartner = partner == sphere ? toSphere : phys->Vb - toSphere;
+		filmOf(current, partner).film += toPartner;
+		liquidRemoved += phys->Vb - toPartner;
+		phys->Vb = 0;
+	}
+	if (state) liquidRemoved += state->film;
+}
+
+boost::python::dict Law2_ScGeom_PendularPhys_Bridge::liquidTotals() const
+{
+	const auto& current = Omega::instance().getScene();
+	Real        films = 0, bridges = 0, fixedBridges = 0;
+	for (const auto& b : *current->bodies)
+		if (b)
+			if (const auto* s = dynamic_cast<const PendularState*>(b->state.get())) films += s->film;
+	for (const auto& I : *current->interactions)
+		if (const auto* p = dynamic_cast<const PendularPhys*>(I->phys.get()))
+			if (p->active) (p->film ? bridges : fixedBridges) += p->Vb;
+	boost::python::dict d;
+	d["films"]        = films;
+	d["bridges"]      = bridges;
+	d["removed"]      = liquidRemoved;
+	d["total"]        = films + bridges + liquidRemoved;
+	d["fixedBridges"] = fixedBridges;
+	return d;
+}
+
 bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys>& ip, Interaction* I)
 {
 	const auto      id1 = I->getId1(), id2 = I->getId2();
@@ -627,7 +880,7 @@ bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys
 	const PendularKinematics k { de1.pos, de1.vel, de1.angVel, de2.pos, de2.vel, de2.angVel,
 		                     periodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero(),
 		                     periodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero(),
-		                     pendularOwner(scene->subdomain, b1.subdomain, b2.subdomain) };
+		                     pendularOwner(scene->subdomain, b1.subdomain, b2.subdomain), id1, id2 };
 	SceneSink       sink { scene, id1, id2, I->isActive };
 	const ScGeom&   geom   = static_cast<const ScGeom&>(*ig);
 	const auto      rotate = [&geom](Vector3r& v) { geom.rotate(v); };

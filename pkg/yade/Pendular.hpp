@@ -5,14 +5,44 @@
 
 #include "YadeHeaders.hpp"
 #include <core/GlobalEngine.hpp>
+#include "film.hpp"
 #include "models.hpp"
+#include "transfer.hpp"
 #include "viscous.hpp"
 
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 namespace yade {
+
+// The liquid a body carries (PendularMat.liquid = 'film'): every body of a PendularMat gets this state
+// (PendularMat.newAssocState, used by utils.sphere, utils.wall, utils.facet, ...).
+class PendularState : public State {
+	Real lastFilm = 0, lastFilmArea = 0; // the values after the last successful check (a rejected assignment is rolled back)
+
+public:
+	void postLoad(PendularState&);
+	// The film thickness [m]: Elskamp2018 eq. (34) on a sphere of radius R, film/filmArea on a wall or
+	// facet (R = inf), 0 on a wall that holds no film.
+	Real thickness(Real R) const;
+	// A wall or facet holds liquid only on a wettable area; a sphere always does.
+	bool holds(Real R) const { return !math::isinf(R) || filmArea > 0; }
+	virtual ~PendularState() = default;
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularState, State,
+		"State of a body of a :yref:`PendularMat`: the liquid it carries when the material's ``liquid`` is ``'film'`` "
+		"(Elskamp2018 section 2.2.1). New bridges take their liquid from the films of both bodies (Shi & McCarthy, "
+		"Elskamp2018 eq. 7-10); a breaking bridge gives it back by the transfer ratio (PendularMat.transfer).",
+		((Real, film, 0, Attr::triggerPostLoad, "Free liquid on the body [m^3], [0, inf): the film, not counting the liquid in its bridges. Only with PendularMat.liquid = 'film' (an error at the first interaction otherwise). Written by the bridges at the end of each step (PendularCheck)."))
+		((Real, filmArea, 0, Attr::triggerPostLoad, "Walls and facets: the wettable area [m^2], [0, inf), over which their film spreads (film thickness W = film/filmArea, Elskamp2018 eq. 10). 0 (the default): the wall holds no liquid, gives none to a bridge and, at rupture, leaves the whole bridge to the sphere. Unused on spheres.")),
+		createIndex();
+	);
+	// clang-format on
+	REGISTER_CLASS_INDEX(PendularState, State);
+};
+REGISTER_SERIALIZABLE(PendularState);
 
 class PendularMat : public Material {
 public:
@@ -21,6 +51,9 @@ public:
 	capillary::Model   calibrateId   = capillary::Model::willett_full;
 	bool               dynamicRupture = false; // `rupture` ends with pitois (Elskamp2018 eq. 33)
 	capillary::NormalViscous viscousId = capillary::NormalViscous::pitois;
+	bool               filmMode      = false; // liquid == "film"
+	bool               filmFormation = false; // formation == "films"
+	capillary::Transfer transferId   = capillary::Transfer::exact;
 	Real               dampingRatioN = 0; // beta/omega for `en`, see dampingRatioFor() in Pendular.cpp
 	void               postLoad(PendularMat&);
 
@@ -30,7 +63,7 @@ private:
 	struct Checked {
 		Real        tc, en, et, kn, cn, ks, cs, frictionAngle, Vb, gamma, theta, linearFmax, linearKc, eta, viscousSmin;
 		bool        wet, forceInContact, extrapolate;
-		std::string model, rupture, calibrateFrom, viscousNormal;
+		std::string model, rupture, calibrateFrom, viscousNormal, liquid, formation, transfer;
 	};
 	Checked checked() const;
 	void    restore(const Checked&);
@@ -38,6 +71,7 @@ private:
 	Checked lastGood;
 
 public:
+	shared_ptr<State> newAssocState() const override { return shared_ptr<State>(new PendularState); }
 	virtual ~PendularMat() = default;
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR(PendularMat, Material,
@@ -56,7 +90,7 @@ public:
 		((Real, cs, NaN, Attr::triggerPostLoad, "Tangential damping of this material [N s/m], [0, inf); combined in series."))
 		((Real, frictionAngle, 0.5, Attr::triggerPostLoad, "Contact friction angle [rad], [0, pi/2); the smaller of two materials is used."))
 		((bool, wet, false, Attr::triggerPostLoad, "True: liquid bridges form at contacts of two wet materials. Requires Vb > 0 and gamma > 0."))
-		((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean."))
+		((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean. With liquid='film': the largest bridge volume (a larger Shi-McCarthy volume is capped, the rest stays on the films)."))
 		((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean."))
 		((Real, theta, 0, Attr::triggerPostLoad, "Contact angle [rad], [0, pi/2). Two materials: each keeps its own; the force models use the angle whose cosine is the mean of the cosines (Elskamp2018 eq. 14-15, closer to the exact bridge than the mean angle), the lian and willett rupture rules the mean angle, willett_elskamp both."))
 		((std::string, model, "willett_full", Attr::triggerPostLoad, "Capillary bridge model, one of:" CAPILLARY_MODEL_NAMES_LITERAL " (yade_capillary.kernels.models() lists each with its source and validity domain; young_laplace_table is the exact bridge, tabulated, with the exact rupture distance). A bridge outside its model's domain is refused unless extrapolate=True; a contact angle outside it is refused when the material is wet. Must be equal on both materials."))
@@ -68,6 +102,9 @@ public:
 		((Real, eta, 0, Attr::triggerPostLoad, "Dynamic viscosity of the liquid [Pa s], [0, 1e9]. 0 (the default): no viscous force is evaluated. > 0: a bridge adds the normal viscous force (viscousNormal) and Goldman's tangential force and moments (Elskamp2018 eq. 28, 29), in contact and separated. Two materials: arithmetic mean; both must be > 0 or both 0 (a wall left at 0 would halve the viscosity of its bridges)."))
 		((std::string, viscousNormal, "pitois", Attr::triggerPostLoad, "Normal viscous force with eta > 0: pitois (Pitois et al. 2000, Elskamp2018 eq. 26, finite bridge volume; the default) or adams_perchard (Elskamp2018 eq. 25). Must be equal on both materials."))
 		((Real, viscousSmin, 0.001, Attr::triggerPostLoad, "S_min / r* [-], [1e-12, 1]: the viscous forces are evaluated at the separation max(S, 0) + S_min, S_min = viscousSmin r*, r* = R1 R2/(R1 + R2) (R1 for a wall), so that they stay finite at contact (Elskamp2018 after eq. 29: 0.001). Must be equal on both materials."))
+		((std::string, liquid, "fixed", Attr::triggerPostLoad, "Where the liquid is: fixed (the default: each bridge has the volume Vb, created at formation and destroyed at rupture, Gladkyy2014) or film (the bodies carry it, PendularState.film: a bridge takes its volume from both films by Shi & McCarthy, Elskamp2018 eq. 7-10, capped at Vb and at the largest V* of the model's domain and of the exact transfer table; it forms one step after the pair qualifies, when PendularCheck has shared each film among all the bridges formed on it in that step, Elskamp2018 section 2.2.1; a volume below the smallest V* of those domains forms no bridge; at rupture the volume goes back to the two films by the transfer rule). film needs a PendularCheck after the interaction loop. Must be equal on both materials."))
+		((std::string, formation, "contact", Attr::triggerPostLoad, "liquid='film': a bridge forms at contact (contact, the default) or when the liquid films touch (films: gap <= h1 + h2, h the film thickness of Elskamp2018 eq. 34, film/filmArea on a wall; the pair must be detected that far, e.g. interactionDetectionFactor of Bo1 and Ig2; YADE's wall and facet geometry exists at contact only). Must be equal on both materials."))
+		((std::string, transfer, "exact", Attr::triggerPostLoad, "liquid='film': how a breaking bridge's liquid goes back to the two films: exact (the Young-Laplace solver's split at the neck at the exact rupture, tabulated on young_laplace_table's nodes: equal contact angles, R_small/R_large >= 1/4 or a wall), parabolic (Elskamp2018 eq. 35-43 at the rupture distance) or diameter (Richefeu2008: R1/(R1 + R2)). A wall that holds no film (filmArea = 0) leaves all of it to the sphere. Must be equal on both materials."))
 		((bool, extrapolate, false, Attr::triggerPostLoad, "False: a bridge outside its model's validity domain (V*, contact angle, size ratio; yade_capillary.kernels.models()) is an error. True: the model is evaluated at the nearest point of its domain, stretched to the bridge's rupture distance and scaled by R cos(theta) (finite, non-negative, monotone where the model is). Must be equal on both materials.")),
 		createIndex(); lastGood = checked();
 	);
@@ -87,6 +124,7 @@ public:
 	std::string       ruptureName() const;
 	std::string       calibrateName() const;
 	std::string       viscousName() const;
+	std::string       transferName() const;
 	bool              extrapolated() const { return bridge.extrapolated(); }
 	virtual ~PendularPhys() = default;
 	// clang-format off
@@ -123,13 +161,21 @@ public:
 		((bool, swapped, false, Attr::readonly, "Body 1 is the wall or facet: R1 is the radius of body 2."))
 		((Real, Fvisc, 0, Attr::readonly, "Normal viscous force of the last step [N], positive = attraction (separating); included in normalForce."))
 		((Vector3r, viscousShear, Vector3r::Zero(), Attr::readonly, "Tangential viscous force on body 2 of the last step [N] (Elskamp2018 eq. 28, 29); not part of shearForce, which is the tangential spring."))
-		((Real, sRupture, 0, Attr::readonly, "Rupture distance of the last step [m]: sCrit, stretched by the dynamic rule if dynamicRupture.")),
+		((Real, sRupture, 0, Attr::readonly, "Rupture distance of the last step [m]: sCrit, stretched by the dynamic rule if dynamicRupture."))
+		((bool, film, false, Attr::readonly, "The bridge's liquid comes from the bodies' films (PendularMat.liquid = 'film'); Vb is 0 until it forms."))
+		((bool, filmFormation, false, Attr::readonly, "film: the bridge forms when the films touch (PendularMat.formation = 'films'), else at contact."))
+		((bool, pending, false, Attr::readonly, "film: the bridge was asked for in this step; PendularCheck forms it at the end of the step."))
+		((int, transferIndex, -1, Attr::readonly, "film: index of the transfer rule in yade_capillary.kernels.TRANSFER_NAMES (-1: fixed volume); its name is ``transfer``."))
+		((Real, transfer1, 0, Attr::readonly, "film: the share of Vb that goes back to the sphere of radius R1 at rupture [-] (the rest to the other body, or to the sphere too if that is a wall holding no film)."))
+		((Real, VbMin, 0, Attr::readonly, "film: smallest bridge volume [m^3]: the smallest V* of the model's domain (and of the exact transfer table) times R^3."))
+		((Real, VbMax, 0, Attr::readonly, "film: largest bridge volume [m^3]: Vb of the materials, and the largest V* of the model's domain (and of the exact transfer table) times R^3.")),
 		createIndex();,
 		.add_property("model", &PendularPhys::modelName, "Name of the capillary model of this bridge ('' without bridge).")
 		.add_property("rupture", &PendularPhys::ruptureName, "Name of the rupture rule of this bridge.")
 		.add_property("calibrateFrom", &PendularPhys::calibrateName, "linear_irreversible: name of the reference model of the calibration.")
 		.add_property("extrapolated", &PendularPhys::extrapolated, "The bridge lies outside its model's domain and is extrapolated.")
 		.add_property("viscousNormal", &PendularPhys::viscousName, "Name of the normal viscous law ('' without viscosity).")
+		.add_property("transfer", &PendularPhys::transferName, "film: name of the transfer rule ('' for a fixed volume).")
 	);
 	// clang-format on
 	REGISTER_CLASS_INDEX(PendularPhys, NormShearPhys);
@@ -152,6 +198,7 @@ public:
 private:
 	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void setLiquid(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void setFilm(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void report(const std::string& message, const Interaction& I);
 	// Written from InteractionLoop's OpenMP threads, hence the locks.
 	std::mutex  errorMutex, dtMutex;
@@ -187,8 +234,9 @@ REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 class PendularCheck : public GlobalEngine {
 	Real warnedDt = NaN; // O.dt of the last warning
 	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of this
-	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp). Called when YADE
-	// registers this class in yade.wrapper, after Omega.
+	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp), and BodyContainer.erase,
+	// so that the liquid of an erased body is accounted for. Called when YADE registers this class
+	// in yade.wrapper, after Omega and BodyContainer.
 	static void guardOmega(boost::python::object wrapper);
 
 public:
@@ -202,7 +250,9 @@ public:
 		"exceeds dtSafety times the smallest two-body critical time step of the interactions created so far. Place it right "
 		"after the InteractionLoop (yade_capillary.scene.engines does). Without it, an input error stops the simulation at the "
 		"end of the step and is logged. The plugin wraps Omega.run and Omega.wait so that they raise the error also when it "
-		"stopped the simulation thread before YADE's wait() looked (which then returns without it).",
+		"stopped the simulation thread before YADE's wait() looked (which then returns without it). With liquid='film' it also "
+		"forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
+		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms), and O.bodies.erase is wrapped to account for the liquid of the body.",
 		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
 		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt); inf before the first."))
 		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-].")),
@@ -216,11 +266,13 @@ REGISTER_SERIALIZABLE(PendularCheck);
 
 // Positions and velocities of the two bodies of an interaction, as the contact law reads them;
 // shift2 and shiftVel move body 2 to its periodic image (zero without periodic cell). owned: this
-// scene counts the bridge in the law's totals (see pendularOwner).
+// scene counts the bridge in the law's totals (see pendularOwner). id1, id2: the bodies, whose films
+// a film-mode bridge reads when it forms and breaks.
 struct PendularKinematics {
 	const Vector3r &pos1, &vel1, &angVel1, &pos2, &vel2, &angVel2;
 	Vector3r        shift2, shiftVel;
 	bool            owned;
+	Body::id_t      id1, id2;
 };
 
 // yade.mpy computes an interaction between bodies of two subdomains on both ranks: its bridge is
@@ -239,8 +291,39 @@ public:
 	// rotate(v): ScGeom::rotate, the shear force carried from the last contact plane to this one.
 	template <class Rotate, class Sink>
 	bool apply(const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink);
-	// Breaks the bridge (totals if owned) and returns false: the interaction is to be reset.
-	bool breakBridge(PendularPhys& phys, bool owned);
+	// Breaks the bridge (totals if owned; film: its liquid back to the films at the end of the step)
+	// and returns false: the interaction is to be reset.
+	bool breakBridge(PendularPhys& phys, const PendularKinematics& k);
+	// Film mode, at the end of each step (PendularCheck, serial): forms the bridges asked for in the
+	// step, sharing each film among all the bridges formed on it (Elskamp2018 section 2.2.1), then
+	// adds the liquid of the bridges broken in the step to the films. Throws std::invalid_argument if
+	// a bridge could not be built (after settling all others, so that no liquid is lost).
+	void settleFilms(Scene* scene);
+	// O.bodies.erase(id) (wrapped by PendularCheck): the bridges of the body break, its share of their
+	// liquid and its film go to liquidRemoved, the partners' shares to their films.
+	void eraseBody(Scene* scene, Body::id_t id);
+	boost::python::dict liquidTotals() const;
+
+private:
+	// Film mode: what the bridges ask of the films in a step, done by settleFilms. Rare (formation and
+	// rupture only), so one lock for InteractionLoop's threads.
+	struct FilmFormation {
+		PendularPhys* phys;
+		Body::id_t    id1, id2;
+		Real          take1, take2; // Shi & McCarthy's volumes from the films of bodies id1, id2 [m^3]
+		bool          owned;
+	};
+	struct FilmReturn {
+		Body::id_t id;
+		Real       volume;
+	};
+	std::mutex                 filmMutex;
+	std::vector<FilmFormation> formations;
+	std::vector<FilmReturn>    returns;
+	void                       askFormation(PendularPhys& phys, const PendularKinematics& k);
+	bool                       filmsTouch(const PendularPhys& phys, const PendularKinematics& k, Real gap) const;
+
+public:
 	FUNCTOR2D(ScGeom, PendularPhys);
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
@@ -254,9 +337,11 @@ public:
 		((OpenMPAccumulator<int>, nBridges, , Attr::readonly, "Number of liquid bridges that exist now [-]. Saved by O.save. Under yade.mpy, the bridges of this rank (a bridge between two subdomains belongs to the larger subdomain number); yade_capillary.mpi.liquid_totals() sums over ranks."))
 		((OpenMPAccumulator<Real>, liquidVolume, , Attr::readonly, "Liquid volume in the bridges that exist now [m^3]. Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidFormed, , Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014). Saved by O.save."))
-		((OpenMPAccumulator<Real>, liquidReleased, , Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume. Saved by O.save.")),
+		((OpenMPAccumulator<Real>, liquidReleased, , Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume. Saved by O.save."))
+		((Real, liquidRemoved, 0, Attr::readonly, "liquid='film': liquid that left the scene with erased bodies (O.bodies.erase) [m^3]: their films and their shares of their bridges. films + bridges + liquidRemoved is constant (liquidTotals()). Saved by O.save.")),
 		/*ctor*/,
-		/*py*/);
+		/*py*/
+		.def("liquidTotals", &Law2_ScGeom_PendularPhys_Bridge::liquidTotals, "The liquid of the current scene [m^3] as a dict: films (sum of PendularState.film over the bodies), bridges (sum of Vb over the film-mode bridges that exist), removed (liquidRemoved), total (their sum, constant in film mode) and fixedBridges (the bridges of fixed-volume materials, not part of total)."));
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Law2_ScGeom_PendularPhys_Bridge);
@@ -294,16 +379,26 @@ inline PendularViscousMoments pendularViscous(const ScGeom& geom, PendularPhys& 
 		 wall2 ? Vector3r((geom.contactPoint - k.pos2 - k.shift2).cross(-force1)) : Vector3r(arm2 * nxF1) };
 }
 
-inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(PendularPhys& phys, bool owned)
+inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(PendularPhys& phys, const PendularKinematics& k)
 {
 	phys.active       = false;
 	phys.Fcap         = 0;
 	phys.Fvisc        = 0;
 	phys.viscousShear = Vector3r::Zero();
-	if (owned) {
+	if (k.owned) {
 		nBridges -= 1;
 		liquidVolume -= phys.Vb;
 		liquidReleased += phys.Vb;
+	}
+	if (phys.film) {
+		// The sphere R1 gets transfer1 of the liquid, the other body the rest, unless it is a wall
+		// that holds no film (checked here: filmArea may have changed since the bridge formed).
+		const Body::id_t sphere = phys.swapped ? k.id2 : k.id1, other = phys.swapped ? k.id1 : k.id2;
+		const auto*      otherState = static_cast<const PendularState*>(Body::byId(other, scene)->state.get());
+		const Real       toSphere   = otherState->holds(phys.R2) ? phys.transfer1 * phys.Vb : phys.Vb;
+		const std::lock_guard<std::mutex> lock(filmMutex);
+		returns.push_back({ sphere, toSphere });
+		returns.push_back({ other, phys.Vb - toSphere });
 	}
 	return false;
 }
@@ -315,23 +410,28 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	if (geom.penetrationDepth < 0) { // separated
 		phys.shearForce = Vector3r::Zero();
 		if (!phys.active) {
+			phys.normalForce = Vector3r::Zero();
+			// Film mode, formation when the films touch: the pair is kept while they do.
+			if (phys.filmFormation && filmsTouch(phys, k, -geom.penetrationDepth)) {
+				if (!phys.pending) askFormation(phys, k);
+				return true;
+			}
 			// No bridge yet (or dry): nothing to keep. Returning false resets the interaction, so the
 			// collider removes it once the bounding boxes part, and the Ig2 makes it real again at
 			// contact, where the bridge forms; a pair that stays close merely gets new physics.
-			phys.normalForce = Vector3r::Zero();
 			return false;
 		}
 		const Real gap = -geom.penetrationDepth;
 		if (!phys.viscous) {
 			// An inviscid separated bridge needs only the gap and the normal: no tangential work, no torque.
-			if (gap > phys.bridge.rupture) return breakBridge(phys, k.owned);
+			if (gap > phys.bridge.rupture) return breakBridge(phys, k);
 			phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
 			phys.normalForce = -phys.Fcap * geom.normal;
 			sink.force(phys.normalForce);
 			return true;
 		}
 		const PendularViscousMoments m = pendularViscous(geom, phys, k, gap);
-		if (gap > phys.sRupture) return breakBridge(phys, k.owned);
+		if (gap > phys.sRupture) return breakBridge(phys, k);
 		phys.Fcap        = capillary::bridge_force_within(phys.bridge, gap, phys.sRupture);
 		phys.normalForce = -(phys.Fcap + phys.Fvisc) * geom.normal;
 		sink.forceTorque(phys.normalForce + phys.viscousShear, m.torque1, m.torque2);
@@ -341,7 +441,9 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
 	if (!(phys.kn > 0)) return false;
 	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
-	if (phys.wet && !phys.active) {
+	if (phys.wet && !phys.active && phys.film) {
+		if (!phys.pending) askFormation(phys, k); // formed by settleFilms at the end of the step
+	} else if (phys.wet && !phys.active) {
 		phys.active = true;
 		if (k.owned) {
 			nBridges += 1;

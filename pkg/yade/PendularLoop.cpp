@@ -128,6 +128,7 @@ void PendularLoop::gather(int threads)
 		p.angVel       = s.angVel;
 		p.subdomain    = b->subdomain;
 		p.radius       = 0;
+		p.reach        = 0;
 		if (b->isClump()) p.kind = clump;
 		else if (!b->shape || !b->material || b->material->getClassIndex() != pendularIndex)
 			p.kind = other;
@@ -136,10 +137,12 @@ void PendularLoop::gather(int threads)
 			if (shape == sphereIndex) {
 				p.kind   = pendularSphere;
 				p.radius = static_cast<const Sphere&>(*b->shape).radius;
+				// Only materials whose bridges form when the films touch reach beyond the surface.
+				if (static_cast<const PendularMat&>(*b->material).filmFormation) p.reach = static_cast<const PendularState&>(s).thickness(p.radius);
 			} else
 				p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 		}
-		if (p.kind == pendularSphere) near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius : -p.radius };
+		if (p.kind == pendularSphere) near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
 	}
 }
 
@@ -286,12 +289,13 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 	const Particle& p2 = particles[I->getId2()];
 	const Vector3r  shift2 = scene->isPeriodic ? Vector3r(cellHsize * I->cellDist.cast<Real>()) : Vector3r::Zero();
 	Vector3r        normal = (p2.pos + shift2) - p1.pos;
-	const Real      sumR   = p1.radius + p2.radius;
+	const Real      sumR   = p1.radius + p2.radius, reach = p1.reach + p2.reach;
 	const bool      wasReal = I->isReal();
 	// A potential interaction: one distance check. Ig2_Sphere_Sphere_ScGeom would make it real
 	// within interactionDetectionFactor (r1 + r2), but apart and without a bridge the law gives no
-	// force and resets it; so it becomes real at contact, where the bridge forms.
-	if (!wasReal && normal.squaredNorm() > sumR * sumR) return;
+	// force and resets it; so it becomes real at contact, where the bridge forms (or where the films
+	// touch, with formation='films').
+	if (!wasReal && normal.squaredNorm() > (sumR + reach) * (sumR + reach)) return;
 
 	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute, in their order of operations.
 	const bool isNew = !I->geom;
@@ -300,7 +304,7 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 	const Real norm = normal.norm();
 	normal /= norm;
 	const Real depth = sumR - norm;
-	if (!wasReal && depth < 0) { // touching within round-off of the squared check, not in depth
+	if (!wasReal && depth < -reach) { // touching within round-off of the squared check, not in depth
 		I->geom.reset();
 		return;
 	}
@@ -358,7 +362,7 @@ bool PendularLoop::applyLaw(
 	const Particle&          p1 = particles[I.getId1()];
 	const Particle&          p2 = particles[I.getId2()];
 	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
-		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain) };
+		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), I.getId1(), I.getId2() };
 	ThreadSink               sink { threadForce[thread].data(), threadTorque[thread].data(), I.getId1(), I.getId2(), I.isActive };
 	return r.law->apply(geom, static_cast<PendularPhys&>(*I.phys), k, scene->dt, rotate, sink);
 }

@@ -17,6 +17,7 @@ public:
 	struct Particle {
 		Vector3r pos, vel, angVel;
 		Real     radius;
+		Real     reach; // film thickness of a sphere whose bridges form when the films touch (formation='films'), else 0
 		int      subdomain;
 		uint8_t  kind;
 	};
@@ -54,8 +55,8 @@ private:
 	bool                               removeUnseen = false;
 	std::vector<Particle>              particles;
 	// The part of a Particle that the check of a potential pair reads, 32 B (two per cache line):
-	// the centre and the radius, signed: > 0 a PendularMat sphere of this subdomain, < 0 (minus the
-	// radius) one of another subdomain, 0 any other body.
+	// the centre and the radius plus the reach, signed: > 0 a PendularMat sphere of this subdomain,
+	// < 0 (negated) one of another subdomain, 0 any other body.
 	struct Near {
 		Vector3r pos;
 		Real     radius;
