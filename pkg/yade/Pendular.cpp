@@ -546,7 +546,8 @@ Real Ip2_PendularMat_PendularMat_PendularPhys::takeCriticalDt()
 
 Real Ip2_PendularMat_PendularMat_PendularPhys::criticalDt(Body::id_t id1, Body::id_t id2)
 {
-	const auto& bodies = Omega::instance().getScene()->bodies;
+	scene              = Omega::instance().getScene().get(); // called from Python, outside any loop
+	const auto& bodies = scene->bodies;
 	if (!bodies->exists(id1) || !bodies->exists(id2) || id1 == id2)
 		throw std::invalid_argument("criticalDt: need two different existing bodies, got ids " + std::to_string(id1) + " and " + std::to_string(id2));
 	const auto& body1 = (*bodies)[id1];
@@ -607,6 +608,12 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
         const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const
 {
+	for (const auto& bm : { std::make_pair(body1, &m1), std::make_pair(body2, &m2) }) {
+		const auto* state = dynamic_cast<const PendularState*>(bm.first->state.get());
+		if (state && state->film > 0 && !bm.second->filmMode)
+			throw std::invalid_argument("PendularState.film = " + capillary::format_value(state->film) + " m^3 on body " + std::to_string(bm.first->id)
+			                            + ", whose material has liquid = '" + bm.second->liquid + "'; films need liquid = 'film'");
+	}
 	phys->wet = m1.wet && m2.wet;
 	if (phys->wet) {
 		auto mustMatch = [&](const char* name, const std::string& a, const std::string& b) {
@@ -685,14 +692,16 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setFilm(
 	phys->filmFormation = m1.filmFormation;
 	phys->transferIndex = int(m1.transferId);
 	// V* range: the model's domain (Plausible with extrapolate), and the exact transfer table's.
-	const capillary::Pair          pair = capillary::pair_of(specOf(*phys));
-	const capillary::Domain&       d    = capillary::info(capillary::Model(phys->modelIndex)).domain;
+	Real r1, r2;
+	capillary::equivalent_pair(phys->R1, phys->R2, r1, r2);
+	const Real               R = capillary::harmonic_mean_radius(r1, r2); // of V* = V/R^3
+	const capillary::Domain& d = capillary::info(capillary::Model(phys->modelIndex)).domain;
 	Real vstarMin = phys->extrapolate ? capillary::Plausible::vstar_min : d.vstar_min, vstarMax = phys->extrapolate ? capillary::Plausible::vstar_max : d.vstar_max;
 	if (m1.transferId == capillary::Transfer::exact) {
 		vstarMin = math::max(vstarMin, math::exp(capillary::yltable::lnv_min));
 		vstarMax = math::min(vstarMax, math::exp(capillary::yltable::lnv_max));
 	}
-	const Real R3 = pair.R * pair.R * pair.R;
+	const Real R3 = R * R * R;
 	phys->VbMin   = vstarMin * R3;
 	phys->VbMax   = math::min(phys->Vb, vstarMax * R3);
 	if (!(phys->VbMax >= phys->VbMin))
