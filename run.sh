@@ -2,7 +2,8 @@
 # yade-capillary entry point. Sets up (installs, fetches headers, builds) when needed, then:
 #   ./run.sh validate   pull-off validations: two spheres (Gladkyy 2014, Table 1; results/two_sphere/),
 #                       sphere-wall and viscous pull-off (Elskamp 2018 Fig. 5a, 5b; results/sphere_wall/,
-#                       results/viscous_pull_off/): summary tables, CSV and PNG
+#                       results/viscous_pull_off/), and a short liquid migration in a drum
+#                       (film mode; results/liquid_migration_quick/): summary tables, CSV, PNG and VTK
 #   ./run.sh test       all tests (kernel unit tests, Python tests, in-YADE tests); further arguments
 #                       go to ctest, e.g. ./run.sh test -L fast (all but the slow shear-cell regression)
 #   ./run.sh bench      speed benchmarks against YADE's built-in capillary law (about 20 min): the
@@ -23,7 +24,8 @@ case "$cmd" in
   validate)
     "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/two_sphere.py results/two_sphere
     "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/sphere_wall.py results/sphere_wall
-    "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/viscous_pull_off.py results/viscous_pull_off ;;
+    "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/viscous_pull_off.py results/viscous_pull_off
+    "$BUILD_DIR/yade-capillary" -j1 -n -x scripts/liquid_migration.py results/liquid_migration_quick --quick ;;
   test) shift; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" "$@" ;;
   bench)
     Y="$BUILD_DIR/yade-capillary"

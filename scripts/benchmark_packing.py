@@ -1,7 +1,7 @@
 # Speed: one wet packing (16^3 touching spheres, ~11 500 bridges) with YADE's built-in capillary
 # law (the baseline), its zero-force variant, our Law2 in YADE's InteractionLoop and our
 # PendularLoop (frictionless, with friction, and frictionless with a viscous liquid, eta = 1 mPa s, with
-# and without the dynamic rupture rule), same model, in one run. Prints ns per
+# and without the dynamic rupture rule, and with the liquid on the particles, liquid="film"), same model, in one run. Prints ns per
 # bridge-step of the interaction loop, ratios to the baseline, PendularLoop's phases and the
 # bytes per bridge. A benchmark, not a test: timings on shared machines are noisy.
 # Run:  build/yade-capillary -j1 -n -x scripts/benchmark_packing.py [n] [steps]

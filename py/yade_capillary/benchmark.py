@@ -7,6 +7,7 @@ time is read from YADE's engine timing and divided by the number of real interac
 shear_cell() compares the laws on the rotating shear cell (whole-run particle-steps per second),
 memory() the bytes per bridge, gladkyy_probe() projects the cost of Gladkyy's full cell.
 """
+import math
 import os
 import random
 import time
@@ -22,8 +23,14 @@ from .scene import engines
 R, RHO, TC, EN, GAMMA, VB = 2.381e-3, 150.0, 5.4e-4, 0.83, 20.6e-3, 13.6e-12
 
 
-def build(material, n, seed, vel):
-    """Fill O with the lattice; `material` a fresh material instance; `vel` [m/s] velocity scale."""
+# Film mode: the film that gives two equal spheres a bridge of VB (Shi & McCarthy, Elskamp 2018 eq. 8:
+# each gives (1 - sqrt(0.75))/2 of its film).
+FILM = VB / (1 - math.sqrt(0.75))
+
+
+def build(material, n, seed, vel, film=0.0):
+    """Fill O with the lattice; `material` a fresh material instance; `vel` [m/s] velocity scale;
+    `film` [m^3] on every sphere (PendularMat.liquid = 'film')."""
     O.reset()
     mat = O.materials.append(material)
     rng = random.Random(seed)
@@ -32,13 +39,14 @@ def build(material, n, seed, vel):
             for k in range(n):
                 b = O.bodies.append(sphere((2 * R * i, 2 * R * j, 2 * R * k), R, material=mat))
                 O.bodies[b].state.vel = tuple(rng.gauss(0, vel) for _ in range(3))
+                O.bodies[b].state.film = film
     O.dt = TC / 50
 
 
-def measure(label, material, loop, n, steps, seed, vel, chunk=100):
+def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0):
     """Run `steps` steps; return dict with ns per interaction-step of the interaction loop (and,
     for PendularLoop, its phases: gathering the bodies, the pass, the force hand-over)."""
-    build(material, n, seed, vel)
+    build(material, n, seed, vel, film)
     O.engines = engines(loop=loop)
     O.step()  # first step: collider and interaction creation, not timed
     O.timingEnabled = True
@@ -73,15 +81,20 @@ def builtin_run(capillar_type, n, steps, seed, vel):
                                    [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
 
 
-def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett"):
+def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett", liquid="fixed"):
     """Our law on the benchmark scene, in `loop` ("standard": YADE's InteractionLoop, "fused":
     PendularLoop); friction: contact friction angle [rad] (0: no tangential spring); eta: liquid
-    viscosity [Pa s] (0: no viscous term); rupture: rupture rule (e.g. "willett+pitois")."""
+    viscosity [Pa s] (0: no viscous term); rupture: rupture rule (e.g. "willett+pitois"); liquid:
+    "fixed" (Vb per bridge) or "film" (every sphere carries FILM, bridges of about Vb from the films,
+    formed by PendularCheck at the end of the step, returned to the films at rupture)."""
     label = "yade-capillary %s, %s, friction %g" % (model, "PendularLoop" if loop == "fused" else "Law2 in InteractionLoop", friction)
     if eta > 0:
         label += ", eta %g Pa s%s" % (eta, ", rupture %s" % rupture if rupture != "willett" else "")
-    return measure(label, PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB, gamma=GAMMA, theta=0, model=model,
-                                      eta=eta, rupture=rupture), loop, n, steps, seed, vel)
+    if liquid == "film":
+        label += ", liquid on the particles (film)"
+    return measure(label, PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB if liquid == "fixed" else 1e-6,
+                                      gamma=GAMMA, theta=0, model=model, eta=eta, rupture=rupture, liquid=liquid),
+                   loop, n, steps, seed, vel, film=FILM if liquid == "film" else 0.0)
 
 
 def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
@@ -89,7 +102,8 @@ def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_m
     Law2 in YADE's InteractionLoop, PendularLoop frictionless and with friction 0.5 rad, and
     PendularLoop frictionless with a viscous liquid (water, eta = 1 mPa s; Elskamp 2018 eq. 26, 28, 29),
     with and without Pitois' dynamic rupture distance (eq. 33): the cost of the viscous terms against
-    the same scene with eta = 0, which evaluates none of them.
+    the same scene with eta = 0, which evaluates none of them; and PendularLoop frictionless with the
+    liquid on the particles (liquid='film'): the cost of the film bookkeeping against fixed volumes.
 
     The zero-force variant (CapillarType "None": the built-in law with the same bookkeeping and a
     capillary force of 0) is the floor of YADE's interaction loop, geometry and dispatch, which no
@@ -101,7 +115,8 @@ def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_m
                 lambda: ours_run(model, "standard", 0.0, n, steps, seed, vel), lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel),
                 lambda: ours_run(model, "fused", 0.5, n, steps, seed, vel),
                 lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3),
-                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3, rupture="willett+pitois")]
+                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3, rupture="willett+pitois"),
+                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, liquid="film")]
     runs = [[] for _ in variants]
     for _ in range(repeats):
         for r, v in zip(runs, variants):
@@ -128,7 +143,6 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
     fused)} of dicts."""
     import json
-    import math
     import tempfile
 
     from . import shearcell

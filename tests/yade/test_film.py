@@ -163,6 +163,17 @@ for loop in LOOPS:
         ck.close(O.bodies[0].state.film - fw, (1 - T) * p.Vb, 1e-12, where + ": the wall gets the rest", "transfer rule", atol=1e-30)
         ck.close(law().liquidTotals()["total"], L0 + wall_film, 1e-14, where + ": conservation", "films + bridges")
 
+# ---- per particle: film + shares of its bridges (yade_capillary.liquid.carried) sum to the law's totals ----
+from yade_capillary import liquid  # noqa: E402 (needs yade)
+
+two_spheres((L0, L1))
+O.step()
+per = liquid.carried(law())
+t = law().liquidTotals()
+ck.close(sum(f + b for f, b in per.values()), t["films"] + t["bridges"], 1e-14, "sum of liquid.carried", "liquidTotals films + bridges")
+p = O.interactions[0, 1].phys
+ck.close(per[0][1], p.transfer1 * p.Vb, 1e-14, "sphere R1 carries transfer1 Vb of its bridge", "PendularPhys.transfer1")
+
 # ---- O.bodies.erase: the body's film and its share of its bridges are accounted for ----
 two_spheres((L0, L1), transfer="diameter")
 O.step()
