@@ -71,7 +71,7 @@ namespace yltable {
 		if (!(std::abs(theta1 - theta2) <= 1e-12)) outside("theta1 = " + format_value(theta1) + " and theta2 = " + format_value(theta2) + " rad differ; the table holds equal contact angles");
 		if (!(lnv >= lnv_min - 1e-12 && lnv <= lnv_max + 1e-12))
 			outside("V* = V/Rh^3 = " + format_value(std::exp(lnv)) + " is outside the table's range [1e-5, 0.1]");
-		if (!(theta1 >= 0 && theta1 <= theta_max + 1e-12)) outside("theta = " + format_value(theta1) + " rad is outside the table's range [0, 50 deg]");
+		if (!(theta1 >= 0 && theta1 <= theta_max + 1e-12)) outside("theta = " + format_value(theta1) + " rad is outside the table's range [0, " + format_value(theta_max) + "] rad (50 deg)");
 		if (!(plane || rho >= rho_nodes[1] - 1e-12))
 			outside("R_small/R_large = " + format_value(rho) + " is outside the table's range [1/4, 1] (or a plane)");
 

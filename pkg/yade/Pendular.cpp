@@ -103,21 +103,49 @@ namespace {
 		if (PyObject_IsTrue(wait.ptr()) == 1) deliverMissed();
 		return result;
 	}
-	// BodyContainer.erase(self, id, ...): the liquid of the body is accounted for first (see
-	// Law2_ScGeom_PendularPhys_Bridge::eraseBody) by every law of the current scene.
-	py::object* yadeErase = nullptr;
-	py::object  guardedErase(py::tuple args, py::dict kw)
+	// Python paths that remove bodies or interactions: the liquid they hold is accounted for first by
+	// every law of the current scene (Law2_ScGeom_PendularPhys_Bridge::eraseBody, releasePair,
+	// clearBodies), then YADE's own method runs.
+	template <class F> void forEachLaw(const F& f)
 	{
-		if (py::len(args) > 1) {
-			py::extract<int> id(args[1]);
-			const auto&      scene = Omega::instance().getScene();
-			if (id.check() && scene)
-				for (const auto& engine : scene->engines)
-					if (const auto loop = YADE_PTR_DYN_CAST<InteractionLoop>(engine))
-						for (const auto& functor : loop->lawDispatcher->functors)
-							if (const auto law = YADE_PTR_DYN_CAST<Law2_ScGeom_PendularPhys_Bridge>(functor)) law->eraseBody(scene.get(), id());
-		}
+		const auto& scene = Omega::instance().getScene();
+		if (!scene) return;
+		for (const auto& engine : scene->engines)
+			if (const auto loop = YADE_PTR_DYN_CAST<InteractionLoop>(engine))
+				for (const auto& functor : loop->lawDispatcher->functors)
+					if (const auto law = YADE_PTR_DYN_CAST<Law2_ScGeom_PendularPhys_Bridge>(functor)) f(*law, scene.get());
+	}
+	py::object *yadeErase = nullptr, *yadeClear = nullptr, *yadeIntrErase = nullptr, *yadeIntrClear = nullptr;
+	py::object  guardedErase(py::tuple args, py::dict kw) // BodyContainer.erase(self, id, eraseClumpMembers=False)
+	{
+		py::extract<int> id(py::len(args) > 1 ? py::object(args[1]) : kw.get("id"));
+		const py::object members = py::len(args) > 2 ? py::object(args[2]) : kw.get("eraseClumpMembers", false);
+		if (id.check()) forEachLaw([&](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) { law.eraseBody(scene, id(), PyObject_IsTrue(members.ptr()) == 1); });
 		return (*yadeErase)(*args, **kw);
+	}
+	py::object guardedClear(py::tuple args, py::dict kw)
+	{
+		forEachLaw([](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) { law.clearBodies(scene); });
+		return (*yadeClear)(*args, **kw);
+	}
+	py::object guardedIntrErase(py::tuple args, py::dict kw) // InteractionContainer.erase(self, id1, id2)
+	{
+		if (py::len(args) > 2) {
+			py::extract<int> id1(args[1]), id2(args[2]);
+			if (id1.check() && id2.check())
+				forEachLaw([&](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) {
+					if (!scene->bodies->exists(id1()) || !scene->bodies->exists(id2())) return;
+					if (const auto& I = scene->interactions->find(id1(), id2())) law.releasePair(scene, *I);
+				});
+		}
+		return (*yadeIntrErase)(*args, **kw);
+	}
+	py::object guardedIntrClear(py::tuple args, py::dict kw)
+	{
+		forEachLaw([](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) {
+			for (const auto& I : *scene->interactions) law.releasePair(scene, *I);
+		});
+		return (*yadeIntrClear)(*args, **kw);
 	}
 	py::object guardedWait(py::tuple args, py::dict kw)
 	{
@@ -189,9 +217,14 @@ namespace {
 void PendularCheck::action()
 {
 	std::string message;
+	bool        loopSeen = false;
 	for (const auto& engine : scene->engines) {
+		if (engine.get() == this && !loopSeen)
+			message = "PendularCheck must come after the interaction loop in O.engines (it settles the liquid of the step's bridges and raises "
+			          "their input errors); yade_capillary.scene.engines places it there";
 		const auto loop = YADE_PTR_DYN_CAST<InteractionLoop>(engine);
 		if (!loop) continue;
+		loopSeen = true;
 		for (const auto& functor : loop->lawDispatcher->functors)
 			if (const auto law = YADE_PTR_DYN_CAST<Law2_ScGeom_PendularPhys_Bridge>(functor)) {
 				try {
@@ -252,12 +285,18 @@ void PendularCheck::guardOmega(boost::python::object wrapper)
 	// Plain attribute assignment (Boost.Python's add_to_namespace would add an overload instead).
 	omega.attr("run")  = run;
 	omega.attr("wait") = wait;
-	py::object bodies = wrapper.attr("BodyContainer");
-	yadeErase         = new py::object(bodies.attr("erase"));
-	py::object erase  = py::raw_function(guardedErase, 1);
-	erase.attr("__doc__") = std::string(py::extract<std::string>(yadeErase->attr("__doc__")))
-	        + "\n(yade-capillary: a body's film and its share of its bridges go to Law2_ScGeom_PendularPhys_Bridge.liquidRemoved, its partners' shares to their films.)";
-	bodies.attr("erase") = erase;
+	// The same for the Python paths that remove bodies or interactions (their liquid is accounted for).
+	const auto wrap = [](py::object cls, const char* name, py::object*& original, py::object (*guarded)(py::tuple, py::dict), const char* note) {
+		original       = new py::object(cls.attr(name));
+		py::object fun = py::raw_function(guarded, 1);
+		fun.attr("__doc__") = std::string(py::extract<std::string>(original->attr("__doc__"))) + "\n(yade-capillary: " + note + ")";
+		cls.attr(name)      = fun;
+	};
+	const char* note = "the liquid of the bridges and films removed is accounted for, see Law2_ScGeom_PendularPhys_Bridge.liquidTotals";
+	wrap(wrapper.attr("BodyContainer"), "erase", yadeErase, guardedErase, note);
+	wrap(wrapper.attr("BodyContainer"), "clear", yadeClear, guardedClear, note);
+	wrap(wrapper.attr("InteractionContainer"), "erase", yadeIntrErase, guardedIntrErase, note);
+	wrap(wrapper.attr("InteractionContainer"), "clear", yadeIntrClear, guardedIntrClear, note);
 }
 
 namespace {
@@ -435,13 +474,17 @@ void PendularMat::validate()
 
 void PendularState::postLoad(PendularState&)
 {
-	const auto refuse = [this](const char* name, Real value) {
+	const auto refuseRange = [this](const char* name, Real value, const std::string& range, const char* unit) {
 		film     = lastFilm;
 		filmArea = lastFilmArea;
-		capillary::out_of_range(std::string("PendularState.") + name, value, "[0, inf)", name == std::string("film") ? "m^3" : "m^2");
+		capillary::out_of_range(std::string("PendularState.") + name, value, range, unit);
 	};
-	if (!(film >= 0 && math::isfinite(film))) refuse("film", film);
-	if (!(filmArea >= 0 && math::isfinite(filmArea))) refuse("filmArea", filmArea);
+	// Plausible: at most the volume of a body of the largest plausible radius (1 km), and a wettable
+	// area of at least a square nanometre, so that the film thickness film/filmArea stays finite.
+	const Real rmin = capillary::Plausible::radius_min, rmax = capillary::Plausible::radius_max;
+	if (!(film >= 0 && film <= rmax * rmax * rmax)) refuseRange("film", film, "[0, " + capillary::format_value(rmax * rmax * rmax) + "]", "m^3");
+	if (!(filmArea == 0 || (filmArea >= rmin * rmin && filmArea <= rmax * rmax)))
+		refuseRange("filmArea", filmArea, "0 (holds no film) or [" + capillary::format_value(rmin * rmin) + ", " + capillary::format_value(rmax * rmax) + "]", "m^2");
 	lastFilm     = film;
 	lastFilmArea = filmArea;
 }
@@ -478,6 +521,7 @@ void PendularPhys::postLoad(PendularPhys&)
 {
 	// After O.load: the cached invariants are not serialized (a film-mode bridge has them once formed).
 	if (wet && modelIndex >= 0 && (!film || active)) buildBridge();
+	pending = false; // a request lives within one step; a saved one would block the pair's bridge for ever
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
@@ -688,6 +732,12 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setFilm(
 	if (!checked)
 		throw std::invalid_argument("PendularMat.liquid = 'film' needs a PendularCheck engine after the interaction loop, which forms the bridges and "
 		                            "moves the liquid at the end of each step (yade_capillary.scene.engines adds it)");
+	for (const auto& b : { body1, body2 }) {
+		const auto& st = static_cast<const PendularState&>(*b->state);
+		if (math::isinf(radiusOf(b)) && st.film > 0 && !(st.filmArea > 0))
+			throw std::invalid_argument("PendularState.film = " + capillary::format_value(st.film) + " m^3 on body " + std::to_string(b->id)
+			                            + ", a wall or facet with filmArea = 0, which holds no liquid; give it the wettable area filmArea > 0 [m^2]");
+	}
 	phys->film          = true;
 	phys->filmFormation = m1.filmFormation;
 	phys->transferIndex = int(m1.transferId);
@@ -705,13 +755,19 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setFilm(
 	phys->VbMin   = vstarMin * R3;
 	phys->VbMax   = math::min(phys->Vb, vstarMax * R3);
 	if (!(phys->VbMax >= phys->VbMin))
-		capillary::out_of_range("PendularMat.Vb", phys->Vb, "[" + capillary::format_value(phys->VbMin) + ", inf) for this pair", "m^3",
+		capillary::out_of_range("PendularMat.Vb (the mean of the two materials)", phys->Vb, "[" + capillary::format_value(phys->VbMin) + ", inf) for this pair", "m^3",
 		                        "with liquid='film' Vb is the largest bridge volume; the smallest is V* = " + capillary::format_value(vstarMin)
 		                                + " times R^3 (the domain of the model and of the transfer rule)");
 	// The largest bridge checks everything but its volume: model, angles, ratio, transfer rule.
 	phys->Vb = phys->VbMax;
 	phys->buildBridge();
-	capillary::transfer_ratio(capillary::Transfer(phys->transferIndex), phys->R1, phys->R2, phys->Vb, phys->bridge.rupture, phys->theta1, phys->theta2);
+	try {
+		capillary::transfer_ratio(capillary::Transfer(phys->transferIndex), phys->R1, phys->R2, phys->Vb, phys->bridge.rupture, phys->theta1, phys->theta2);
+	} catch (const std::exception& e) {
+		throw std::invalid_argument("PendularMat.transfer = '" + m1.transfer + "' cannot split this pair's bridges (PendularMat.theta " + capillary::format_value(phys->theta1)
+		                            + " and " + capillary::format_value(phys->theta2) + " rad, radii " + capillary::format_value(phys->R1) + " and "
+		                            + capillary::format_value(phys->R2) + " m): " + e.what() + "; another rule: " + capillary::transfer_names());
+	}
 	phys->Vb = 0;
 	phys->viscous.reset();
 }
@@ -781,11 +837,17 @@ void Law2_ScGeom_PendularPhys_Bridge::settleFilms(Scene* current)
 	}
 	std::unordered_map<Body::id_t, Real> share;
 	for (const auto& d : demand) {
+		if (!current->bodies->exists(d.first)) continue;
 		const Real film  = filmOf(current, d.first).film;
 		share[d.first] = d.second > film ? film / d.second : 1;
 	}
 	std::string error;
 	for (const auto& f : formations) {
+		// An engine between the loop and PendularCheck may have removed the pair or a body: nothing
+		// was taken from the films yet, so the request is simply dropped.
+		if (!current->bodies->exists(f.id1) || !current->bodies->exists(f.id2)) continue;
+		const shared_ptr<Interaction>& I = current->interactions->find(f.id1, f.id2);
+		if (!I || I->phys.get() != f.phys || !f.phys->pending) continue;
 		PendularPhys&  phys = *f.phys;
 		PendularState& s1   = filmOf(current, f.id1);
 		PendularState& s2   = filmOf(current, f.id2);
@@ -827,40 +889,67 @@ void Law2_ScGeom_PendularPhys_Bridge::settleFilms(Scene* current)
 	if (!error.empty()) throw std::invalid_argument(error);
 }
 
-void Law2_ScGeom_PendularPhys_Bridge::eraseBody(Scene* current, Body::id_t id)
+namespace {
+	void refuseWhileRunning(const char* what)
+	{
+		if (Omega::instance().isRunning())
+			throw std::runtime_error(std::string(what) + " while the simulation runs (O.run()): the bridges and films change under it; call O.pause() or O.wait() first");
+	}
+} // namespace
+
+void Law2_ScGeom_PendularPhys_Bridge::releasePair(Scene* current, Interaction& I)
+{
+	auto* phys = dynamic_cast<PendularPhys*>(I.phys.get());
+	if (!phys || !phys->active) return;
+	refuseWhileRunning("removing a bridge");
+	const Body::id_t id1 = I.getId1(), id2 = I.getId2();
+	const bool       both = current->bodies->exists(id1) && current->bodies->exists(id2);
+	if (!both || pendularOwner(current->subdomain, Body::byId(id1, current)->subdomain, Body::byId(id2, current)->subdomain)) {
+		nBridges -= 1;
+		liquidVolume -= phys->Vb;
+		liquidReleased += phys->Vb;
+	}
+	phys->active = false; // the interaction goes (or becomes potential) without the law
+	if (!phys->film) return;
+	// As a rupture: the sphere R1 gets transfer1, the other body the rest (all to the sphere if that
+	// is a wall holding no film); a share of a body that no longer exists leaves the scene.
+	const Body::id_t sphere = phys->swapped ? id2 : id1, other = phys->swapped ? id1 : id2;
+	const bool       otherHolds = !current->bodies->exists(other) || filmOf(current, other).holds(phys->R2);
+	const Real       toSphere   = otherHolds ? phys->transfer1 * phys->Vb : phys->Vb;
+	for (const auto& share : { std::make_pair(sphere, toSphere), std::make_pair(other, phys->Vb - toSphere) }) {
+		if (current->bodies->exists(share.first)) filmOf(current, share.first).film += share.second;
+		else liquidRemoved += share.second;
+	}
+	phys->Vb = 0;
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::eraseBody(Scene* current, Body::id_t id, bool clumpMembers)
 {
 	if (!current->bodies->exists(id)) return;
-	const shared_ptr<Body>& body  = (*current->bodies)[id];
-	const auto*             state = dynamic_cast<PendularState*>(body->state.get());
-	for (const auto& entry : body->intrs) {
-		const shared_ptr<Interaction>& I    = entry.second;
-		auto*                          phys = dynamic_cast<PendularPhys*>(I->phys.get());
-		if (!phys || !phys->active) continue;
-		const Body::id_t id1 = I->getId1(), id2 = I->getId2();
-		const Body&      b1 = *Body::byId(id1, current);
-		const Body&      b2 = *Body::byId(id2, current);
-		if (pendularOwner(current->subdomain, b1.subdomain, b2.subdomain)) {
-			nBridges -= 1;
-			liquidVolume -= phys->Vb;
-			liquidReleased += phys->Vb;
-		}
-		phys->active = false; // the interaction goes with the body in the next step
-		if (!phys->film) continue;
-		// As a rupture: the partner keeps its share if it holds liquid; the rest leaves with the body.
-		const Body::id_t sphere = phys->swapped ? id2 : id1, other = phys->swapped ? id1 : id2;
-		const bool       otherHolds = filmOf(current, other).holds(phys->R2);
-		const Real       toSphere = otherHolds ? phys->transfer1 * phys->Vb : phys->Vb;
-		const Body::id_t partner = id1 == id ? id2 : id1;
-		const Real       toPartner = partner == sphere ? toSphere : phys->Vb - toSphere;
-		filmOf(current, partner).film += toPartner;
-		liquidRemoved += phys->Vb - toPartner;
-		phys->Vb = 0;
+	const shared_ptr<Body> body = (*current->bodies)[id];
+	if (clumpMembers && body->isClump()) // its members point at it (Clump::members is not exported by YADE's library)
+		for (const auto& b : *current->bodies)
+			if (b && b->isClumpMember() && b->clumpId == id) eraseBody(current, b->id, false);
+	// Its bridges break as at rupture (the partners keep their shares); then its film, with its own
+	// shares, leaves the scene.
+	for (const auto& entry : body->intrs) releasePair(current, *entry.second);
+	if (auto* state = dynamic_cast<PendularState*>(body->state.get())) {
+		if (state->film > 0) refuseWhileRunning("O.bodies.erase of a body with a film");
+		liquidRemoved += state->film;
 	}
-	if (state) liquidRemoved += state->film;
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::clearBodies(Scene* current)
+{
+	for (const auto& I : *current->interactions) releasePair(current, *I);
+	for (const auto& b : *current->bodies)
+		if (b)
+			if (auto* state = dynamic_cast<PendularState*>(b->state.get())) liquidRemoved += state->film;
 }
 
 boost::python::dict Law2_ScGeom_PendularPhys_Bridge::liquidTotals() const
 {
+	refuseWhileRunning("liquidTotals()");
 	const auto& current = Omega::instance().getScene();
 	Real        films = 0, bridges = 0, fixedBridges = 0;
 	for (const auto& b : *current->bodies)

@@ -137,6 +137,9 @@ public:
 		((Real, tangensOfFrictionAngle, 0, Attr::readonly, "Tangent of the contact friction angle [-]."))
 		((bool, wet, false, Attr::readonly, "Both materials are wet: a bridge forms at contact."))
 		((bool, active, false, Attr::readonly, "A liquid bridge exists (formed at contact, not yet broken)."))
+		((bool, film, false, Attr::readonly, "The bridge's liquid comes from the bodies' films (PendularMat.liquid = 'film'); Vb is 0 until it forms."))
+		((bool, filmFormation, false, Attr::readonly, "film: the bridge forms when the films touch (PendularMat.formation = 'films'), else at contact."))
+		((bool, pending, false, Attr::readonly, "film: the bridge was asked for in this step; PendularCheck forms it at the end of the step."))
 		((bool, forceInContact, false, Attr::readonly, "F(0) acts during overlap."))
 		((Real, R1, 0, Attr::readonly, "Radius of the (first) sphere of the bridge [m]: body 1, or body 2 if body 1 is a wall or facet (swapped)."))
 		((Real, R2, 0, Attr::readonly, "Radius of the other body [m] (inf for a wall or facet)."))
@@ -162,9 +165,6 @@ public:
 		((Real, Fvisc, 0, Attr::readonly, "Normal viscous force of the last step [N], positive = attraction (separating); included in normalForce."))
 		((Vector3r, viscousShear, Vector3r::Zero(), Attr::readonly, "Tangential viscous force on body 2 of the last step [N] (Elskamp2018 eq. 28, 29); not part of shearForce, which is the tangential spring."))
 		((Real, sRupture, 0, Attr::readonly, "Rupture distance of the last step [m]: sCrit, stretched by the dynamic rule if dynamicRupture."))
-		((bool, film, false, Attr::readonly, "The bridge's liquid comes from the bodies' films (PendularMat.liquid = 'film'); Vb is 0 until it forms."))
-		((bool, filmFormation, false, Attr::readonly, "film: the bridge forms when the films touch (PendularMat.formation = 'films'), else at contact."))
-		((bool, pending, false, Attr::readonly, "film: the bridge was asked for in this step; PendularCheck forms it at the end of the step."))
 		((int, transferIndex, -1, Attr::readonly, "film: index of the transfer rule in yade_capillary.kernels.TRANSFER_NAMES (-1: fixed volume); its name is ``transfer``."))
 		((Real, transfer1, 0, Attr::readonly, "film: the share of Vb that goes back to the sphere of radius R1 at rupture [-] (the rest to the other body, or to the sphere too if that is a wall holding no film)."))
 		((Real, VbMin, 0, Attr::readonly, "film: smallest bridge volume [m^3]: the smallest V* of the model's domain (and of the exact transfer table) times R^3."))
@@ -299,9 +299,14 @@ public:
 	// adds the liquid of the bridges broken in the step to the films. Throws std::invalid_argument if
 	// a bridge could not be built (after settling all others, so that no liquid is lost).
 	void settleFilms(Scene* scene);
-	// O.bodies.erase(id) (wrapped by PendularCheck): the bridges of the body break, its share of their
-	// liquid and its film go to liquidRemoved, the partners' shares to their films.
-	void eraseBody(Scene* scene, Body::id_t id);
+	// The Python paths that remove bodies or interactions (wrapped by PendularCheck::guardOmega):
+	// releasePair breaks an active bridge as at rupture, its liquid to the two films (O.interactions.erase
+	// and clear); eraseBody breaks the body's bridges and moves its film to liquidRemoved, with its clump's
+	// members if clumpMembers (O.bodies.erase); clearBodies moves all liquid to liquidRemoved
+	// (O.bodies.clear). Refused (std::runtime_error) while the simulation runs.
+	void releasePair(Scene* scene, Interaction& I);
+	void eraseBody(Scene* scene, Body::id_t id, bool clumpMembers);
+	void clearBodies(Scene* scene);
 	boost::python::dict liquidTotals() const;
 
 private:

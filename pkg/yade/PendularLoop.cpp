@@ -138,7 +138,8 @@ void PendularLoop::gather(int threads)
 				p.kind   = pendularSphere;
 				p.radius = static_cast<const Sphere&>(*b->shape).radius;
 				// Only materials whose bridges form when the films touch reach beyond the surface.
-				if (static_cast<const PendularMat&>(*b->material).filmFormation) p.reach = static_cast<const PendularState&>(s).thickness(p.radius);
+				if (static_cast<const PendularMat&>(*b->material).filmFormation)
+					if (const auto* film = dynamic_cast<const PendularState*>(&s)) p.reach = film->thickness(p.radius);
 			} else
 				p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 		}

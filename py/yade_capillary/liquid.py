@@ -11,7 +11,7 @@ import math
 # Columns of the time series written by a migration run (units in the names).
 MIGRATION_COLUMNS = ("t_s", "films_m3", "bridges_m3", "removed_m3", "total_m3", "drift_rel", "n_bridges",
                      "wet_mean_film_m3", "dry_mean_film_m3", "wet_mean_carried_m3", "dry_mean_carried_m3",
-                     "dry_with_liquid_frac")
+                     "dry_with_liquid_frac", "walls_carried_m3")
 
 
 def carried(law):
@@ -36,8 +36,8 @@ def carried(law):
 def populations(law, groups, t, total0):
     """One row of MIGRATION_COLUMNS at time t [s]: the law's totals, the drift of the total from
     total0 (relative), and per population (``groups = {"wet": ids, "dry": ids}``) the mean film and
-    the mean liquid carried (film + bridge shares, :func:`carried`), and the fraction of the dry
-    population that carries any liquid."""
+    the mean liquid carried (film + bridge shares, :func:`carried`), the fraction of the dry
+    population that carries any liquid, and the liquid carried by all other bodies (walls, facets)."""
     tot = law.liquidTotals()
     per = carried(law)
     row = {"t_s": t, "films_m3": tot["films"], "bridges_m3": tot["bridges"], "removed_m3": tot["removed"],
@@ -48,6 +48,8 @@ def populations(law, groups, t, total0):
         row[name + "_mean_carried_m3"] = sum(per[i][0] + per[i][1] for i in ids) / len(ids)
     dry = [i for i in groups["dry"] if i in per]
     row["dry_with_liquid_frac"] = sum(1 for i in dry if per[i][0] + per[i][1] > 0) / len(dry)
+    members = set(groups["wet"]) | set(groups["dry"])
+    row["walls_carried_m3"] = sum(f + b for i, (f, b) in per.items() if i not in members)
     return row
 
 
@@ -134,7 +136,8 @@ def write_scene_vtk(prefix, law, groups):
 
 def plot_migration(rows, png, title):
     """Two panels over time: the mean liquid carried per particle of the wet and the dry population
-    (film + bridge shares) and the liquid in films vs bridges with the bridge count."""
+    (film + bridge shares) and the liquid in films vs bridges vs carried by the walls, with the
+    bridge count."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -149,6 +152,7 @@ def plot_migration(rows, png, title):
     a.legend(fontsize=8)
     b.plot(t, [r["films_m3"] * 1e12 for r in rows], label="in films")
     b.plot(t, [r["bridges_m3"] * 1e12 for r in rows], label="in bridges")
+    b.plot(t, [r["walls_carried_m3"] * 1e12 for r in rows], label="carried by walls and facets")
     b.set_xlabel("t [s]")
     b.set_ylabel("liquid [nl]")
     c = b.twinx()
