@@ -27,7 +27,7 @@ quick = "--quick" in sys.argv
 outdir = args[0] if args else os.path.join("results", "liquid_migration")
 os.makedirs(os.path.join(outdir, "vtk"), exist_ok=True)
 
-RD, LD, R, FUZZ = 15e-3, 10e-3, 1.0e-3, 0.2  # drum radius and length, mean radius, radius spread [m, m, m, -]
+RD, LD, R, FUZZ = 15e-3, 10e-3, 0.7e-3, 0.2  # drum radius and length, mean radius, radius spread [m, m, m, -]
 OMEGA = math.pi                              # drum speed [rad/s], 0.5 rev/s
 SETTLE, ROTATE = (0.15, 0.1) if quick else (0.3, 4.0)  # [s]
 mat = PendularMat(tc=4e-4, en=0.5, et=0.5, density=2500, frictionAngle=0.4, wet=True, Vb=1e-6, gamma=0.072,
