@@ -89,6 +89,15 @@ inline std::string format_value(double x)
 	                            + (hint.empty() ? "" : "; " + hint));
 }
 
+// The names of a table of named rules (models, rupture rules, viscous laws, transfer rules), as
+// listed in errors and docstrings: "a, b, c".
+template <class Table> std::string join_names(const Table& table)
+{
+	std::string s;
+	for (const auto& row : table) s += (s.empty() ? "" : ", ") + std::string(row.name);
+	return s;
+}
+
 // The radii of a pair (R2 may be a wall), checked against Plausible: the one check of every kernel.
 inline void check_radii(double R1, double R2)
 {

@@ -119,13 +119,6 @@ namespace {
 	const std::vector<ModelInfo> model_table = { CAPILLARY_MODELS(CAPILLARY_INFO_) };
 #undef CAPILLARY_INFO_
 
-	template <class T> std::string join_names(const std::vector<T>& table)
-	{
-		std::string s;
-		for (const auto& row : table) s += (s.empty() ? "" : ", ") + std::string(row.name);
-		return s;
-	}
-
 } // namespace
 
 // ---- the models' invariants ------------------------------------------------------------------

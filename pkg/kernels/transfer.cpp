@@ -140,12 +140,7 @@ namespace {
 
 const std::array<TransferInfo, 3>& transfer_rules() { return transfer_table; }
 
-std::string transfer_names()
-{
-	std::string out;
-	for (const auto& t : transfer_table) out += (out.empty() ? "" : ", ") + std::string(t.name);
-	return out;
-}
+std::string transfer_names() { return join_names(transfer_table); }
 
 Transfer transfer_from_name(const std::string& name)
 {

@@ -46,12 +46,7 @@ namespace {
 } // namespace
 
 const std::vector<NormalViscousInfo>& normal_viscous_laws() { return normal_table; }
-std::string                           normal_viscous_names()
-{
-	std::string s;
-	for (const auto& i : normal_table) s += (s.empty() ? "" : ", ") + std::string(i.name);
-	return s;
-}
+std::string                           normal_viscous_names() { return join_names(normal_table); }
 NormalViscous normal_viscous_from_name(const std::string& name)
 {
 	for (const auto& i : normal_table)
