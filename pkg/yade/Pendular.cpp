@@ -798,19 +798,20 @@ namespace {
 	PendularState& filmOf(Scene* scene, Body::id_t id) { return static_cast<PendularState&>(*Body::byId(id, scene)->state); }
 } // namespace
 
-// The sphere R1 is body 1 unless swapped; the other body is a sphere R2 or a wall (R2 = inf).
 bool Law2_ScGeom_PendularPhys_Bridge::filmsTouch(const PendularPhys& phys, const PendularKinematics& k, Real gap) const
 {
-	const PendularState& sphere = filmOf(scene, phys.swapped ? k.id2 : k.id1);
-	const PendularState& other  = filmOf(scene, phys.swapped ? k.id1 : k.id2);
+	const FilmPair       ids    = filmPair(phys, k.id1, k.id2);
+	const PendularState& sphere = filmOf(scene, ids.sphere);
+	const PendularState& other  = filmOf(scene, ids.other);
 	return gap <= sphere.thickness(phys.R1) + other.thickness(phys.R2);
 }
 
 void Law2_ScGeom_PendularPhys_Bridge::askFormation(PendularPhys& phys, const PendularKinematics& k)
 {
 	// Shi & McCarthy (Elskamp2018 eq. 8; eq. 9-10 with a wall) from the films at the start of the step.
-	const PendularState& sphere = filmOf(scene, phys.swapped ? k.id2 : k.id1);
-	const PendularState& other  = filmOf(scene, phys.swapped ? k.id1 : k.id2);
+	const FilmPair       ids    = filmPair(phys, k.id1, k.id2);
+	const PendularState& sphere = filmOf(scene, ids.sphere);
+	const PendularState& other  = filmOf(scene, ids.other);
 	const Real           fromSphere = capillary::film_contribution(phys.R1, phys.R2, sphere.film);
 	const Real           fromOther  = math::isinf(phys.R2) ? capillary::wall_film_contribution(phys.R1, other.thickness(phys.R2))
 	                                                       : capillary::film_contribution(phys.R2, phys.R1, other.film);
@@ -830,16 +831,14 @@ void Law2_ScGeom_PendularPhys_Bridge::settleFilms(Scene* current)
 	});
 	// A film asked for more than it holds is shared in proportion to the requests (Elskamp2018
 	// section 2.2.1: all the bridges of one step form under the same conditions).
-	std::unordered_map<Body::id_t, Real> demand;
+	std::unordered_map<Body::id_t, Real> share; // per body: the sum of the requests, then the share granted
 	for (const auto& f : formations) {
-		demand[f.id1] += f.take1;
-		demand[f.id2] += f.take2;
+		share[f.id1] += f.take1;
+		share[f.id2] += f.take2;
 	}
-	std::unordered_map<Body::id_t, Real> share;
-	for (const auto& d : demand) {
-		if (!current->bodies->exists(d.first)) continue;
-		const Real film  = filmOf(current, d.first).film;
-		share[d.first] = d.second > film ? film / d.second : 1;
+	for (auto& s : share) {
+		const Real demand = s.second, film = current->bodies->exists(s.first) ? filmOf(current, s.first).film : 0;
+		s.second = demand > film ? film / demand : 1;
 	}
 	std::string error;
 	for (const auto& f : formations) {
@@ -911,12 +910,11 @@ void Law2_ScGeom_PendularPhys_Bridge::releasePair(Scene* current, Interaction& I
 	}
 	phys->active = false; // the interaction goes (or becomes potential) without the law
 	if (!phys->film) return;
-	// As a rupture: the sphere R1 gets transfer1, the other body the rest (all to the sphere if that
-	// is a wall holding no film); a share of a body that no longer exists leaves the scene.
-	const Body::id_t sphere = phys->swapped ? id2 : id1, other = phys->swapped ? id1 : id2;
-	const bool       otherHolds = !current->bodies->exists(other) || filmOf(current, other).holds(phys->R2);
-	const Real       toSphere   = otherHolds ? phys->transfer1 * phys->Vb : phys->Vb;
-	for (const auto& share : { std::make_pair(sphere, toSphere), std::make_pair(other, phys->Vb - toSphere) }) {
+	// As a rupture; a share of a body that no longer exists leaves the scene.
+	const FilmPair ids        = filmPair(*phys, id1, id2);
+	const bool     otherHolds = !current->bodies->exists(ids.other) || filmOf(current, ids.other).holds(phys->R2);
+	const Real     toSphere   = sphereShare(*phys, otherHolds);
+	for (const auto& share : { std::make_pair(ids.sphere, toSphere), std::make_pair(ids.other, phys->Vb - toSphere) }) {
 		if (current->bodies->exists(share.first)) filmOf(current, share.first).film += share.second;
 		else liquidRemoved += share.second;
 	}

@@ -35,8 +35,8 @@ public:
 		"State of a body of a :yref:`PendularMat`: the liquid it carries when the material's ``liquid`` is ``'film'`` "
 		"(Elskamp2018 section 2.2.1). New bridges take their liquid from the films of both bodies (Shi & McCarthy, "
 		"Elskamp2018 eq. 7-10); a breaking bridge gives it back by the transfer ratio (PendularMat.transfer).",
-		((Real, film, 0, Attr::triggerPostLoad, "Free liquid on the body [m^3], [0, inf): the film, not counting the liquid in its bridges. Only with PendularMat.liquid = 'film' (an error at the first interaction otherwise). Written by the bridges at the end of each step (PendularCheck)."))
-		((Real, filmArea, 0, Attr::triggerPostLoad, "Walls and facets: the wettable area [m^2], [0, inf), over which their film spreads (film thickness W = film/filmArea, Elskamp2018 eq. 10). 0 (the default): the wall holds no liquid, gives none to a bridge and, at rupture, leaves the whole bridge to the sphere. Unused on spheres.")),
+		((Real, film, 0, Attr::triggerPostLoad, "Free liquid on the body [m^3], [0, 1e9] (at most a body of 1 km): the film, not counting the liquid in its bridges. Only with PendularMat.liquid = 'film' (an error at the first interaction otherwise). Written by the bridges at the end of each step (PendularCheck)."))
+		((Real, filmArea, 0, Attr::triggerPostLoad, "Walls and facets: the wettable area [m^2], 0 or [1e-18, 1e6], over which their film spreads (film thickness W = film/filmArea, Elskamp2018 eq. 10). 0 (the default): the wall holds no liquid, gives none to a bridge and, at rupture, leaves the whole bridge to the sphere. Unused on spheres.")),
 		createIndex();
 	);
 	// clang-format on
@@ -234,9 +234,9 @@ REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 class PendularCheck : public GlobalEngine {
 	Real warnedDt = NaN; // O.dt of the last warning
 	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of this
-	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp), and BodyContainer.erase,
-	// so that the liquid of an erased body is accounted for. Called when YADE registers this class
-	// in yade.wrapper, after Omega and BodyContainer.
+	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp), and the erase and clear
+	// of BodyContainer and InteractionContainer, so that the liquid they remove is accounted for.
+	// Called when YADE registers this class in yade.wrapper, after those classes.
 	static void guardOmega(boost::python::object wrapper);
 
 public:
@@ -252,7 +252,7 @@ public:
 		"end of the step and is logged. The plugin wraps Omega.run and Omega.wait so that they raise the error also when it "
 		"stopped the simulation thread before YADE's wait() looked (which then returns without it). With liquid='film' it also "
 		"forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
-		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms), and O.bodies.erase is wrapped to account for the liquid of the body.",
+		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms). O.bodies.erase and clear, O.interactions.erase and clear are wrapped to account for the liquid they remove.",
 		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
 		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt); inf before the first."))
 		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-].")),
@@ -325,6 +325,15 @@ private:
 	std::mutex                 filmMutex;
 	std::vector<FilmFormation> formations;
 	std::vector<FilmReturn>    returns;
+	// The sphere R1 of a bridge and its other body (a sphere R2, or a wall or facet): bodies 1 and 2
+	// unless swapped.
+	struct FilmPair {
+		Body::id_t sphere, other;
+	};
+	static FilmPair filmPair(const PendularPhys& p, Body::id_t id1, Body::id_t id2) { return p.swapped ? FilmPair { id2, id1 } : FilmPair { id1, id2 }; }
+	// What goes back to the sphere R1 when the bridge ends [m^3]: transfer1 of its liquid, or all of it
+	// if the other body is a wall that holds no film (otherHolds false); the other body gets the rest.
+	static Real sphereShare(const PendularPhys& p, bool otherHolds) { return otherHolds ? p.transfer1 * p.Vb : p.Vb; }
 	void                       askFormation(PendularPhys& phys, const PendularKinematics& k);
 	bool                       filmsTouch(const PendularPhys& phys, const PendularKinematics& k, Real gap) const;
 
@@ -396,14 +405,13 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(PendularPhys& phys, con
 		liquidReleased += phys.Vb;
 	}
 	if (phys.film) {
-		// The sphere R1 gets transfer1 of the liquid, the other body the rest, unless it is a wall
-		// that holds no film (checked here: filmArea may have changed since the bridge formed).
-		const Body::id_t sphere = phys.swapped ? k.id2 : k.id1, other = phys.swapped ? k.id1 : k.id2;
-		const auto*      otherState = static_cast<const PendularState*>(Body::byId(other, scene)->state.get());
-		const Real       toSphere   = otherState->holds(phys.R2) ? phys.transfer1 * phys.Vb : phys.Vb;
+		// Whether the other body holds a film is read now: filmArea may have changed since the bridge formed.
+		const FilmPair ids        = filmPair(phys, k.id1, k.id2);
+		const auto*    otherState = static_cast<const PendularState*>(Body::byId(ids.other, scene)->state.get());
+		const Real     toSphere   = sphereShare(phys, otherState->holds(phys.R2));
 		const std::lock_guard<std::mutex> lock(filmMutex);
-		returns.push_back({ sphere, toSphere });
-		returns.push_back({ other, phys.Vb - toSphere });
+		returns.push_back({ ids.sphere, toSphere });
+		returns.push_back({ ids.other, phys.Vb - toSphere });
 	}
 	return false;
 }
