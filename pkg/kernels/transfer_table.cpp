@@ -15,26 +15,12 @@ namespace {
 	static_assert(sizeof(table) / sizeof(double) == size_t(yltable::n_lnv) * yltable::n_theta * yltable::n_rho * row_len,
 	              "data/transfer_table.csv does not match the axes of young_laplace_table: regenerate it (tools/generate_transfer_table.cpp)");
 
-	const double* row(int i, int j, int k) { return table + ((size_t(i) * yltable::n_theta + j) * yltable::n_rho + k) * row_len; }
-
-	// The rows carry their node coordinates: check them once against the axes.
-	bool checked_nodes()
-	{
-		for (int i = 0; i < yltable::n_lnv; ++i)
-			for (int j = 0; j < yltable::n_theta; ++j)
-				for (int k = 0; k < yltable::n_rho; ++k) {
-					const double* r = row(i, j, k);
-					if (std::abs(r[0] - yltable::lnv_node(i)) > 1e-12 || std::abs(r[1] - yltable::theta_node(j)) > 1e-12
-					    || std::abs(r[2] - yltable::rho_nodes[k]) > 1e-12)
-						throw std::logic_error("data/transfer_table.csv: node mismatch; regenerate the table");
-				}
-		return true;
-	}
+	const double* row(int i, int j, int k) { return yltable::node_row(table, row_len, i, j, k); }
 } // namespace
 
 double exact_transfer(double R1, double R2, double volume, double theta1, double theta2)
 {
-	static const bool nodes_ok = checked_nodes();
+	static const bool nodes_ok = (yltable::check_nodes(table, row_len, "data/transfer_table.csv"), true); // once
 	(void)nodes_ok;
 	check_radii(R1, R2);
 	if (!(volume > 0 && std::isfinite(volume))) out_of_range("volume", volume, "(0, inf)", "m^3");

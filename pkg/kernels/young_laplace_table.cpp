@@ -20,20 +20,7 @@ namespace yltable {
 		static_assert(sizeof(table) / sizeof(double) == size_t(n_lnv) * n_theta * n_rho * row_len,
 		              "data/young_laplace_table.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.cpp)");
 
-		const double* row(int i, int j, int k) { return table + ((size_t(i) * n_theta + j) * n_rho + k) * row_len; }
-
-		// The rows carry their node coordinates: check them once against the axes.
-		bool checked_nodes()
-		{
-			for (int i = 0; i < n_lnv; ++i)
-				for (int j = 0; j < n_theta; ++j)
-					for (int k = 0; k < n_rho; ++k) {
-						const double* r = row(i, j, k);
-						if (std::abs(r[0] - lnv_node(i)) > 1e-12 || std::abs(r[1] - theta_node(j)) > 1e-12 || std::abs(r[2] - rho_nodes[k]) > 1e-12)
-							throw std::logic_error("data/young_laplace_table.csv: node mismatch; regenerate the table");
-					}
-			return true;
-		}
+		const double* row(int i, int j, int k) { return node_row(table, row_len, i, j, k); }
 
 		// 4-point Lagrange weights for x on the nodes xs[0..3].
 		void lagrange(const double* xs, double x, double* w)
@@ -53,6 +40,17 @@ namespace yltable {
 		}
 
 	} // namespace
+
+	void check_nodes(const double* table, int row_len, const char* file)
+	{
+		for (int i = 0; i < n_lnv; ++i)
+			for (int j = 0; j < n_theta; ++j)
+				for (int k = 0; k < n_rho; ++k) {
+					const double* r = node_row(table, row_len, i, j, k);
+					if (std::abs(r[0] - lnv_node(i)) > 1e-12 || std::abs(r[1] - theta_node(j)) > 1e-12 || std::abs(r[2] - rho_nodes[k]) > 1e-12)
+						throw std::logic_error(std::string(file) + ": node mismatch; regenerate the table");
+				}
+	}
 
 	Stencil locate(const char* table, double R1, double R2, double volume, double theta1, double theta2)
 	{
@@ -94,7 +92,7 @@ namespace yltable {
 
 	Curve curve(double R1, double R2, double volume, double gamma, double theta1, double theta2)
 	{
-		static const bool nodes_ok = checked_nodes();
+		static const bool nodes_ok = (check_nodes(table, row_len, "data/young_laplace_table.csv"), true); // once
 		(void)nodes_ok;
 		const Stencil               s = locate("young_laplace_table", R1, R2, volume, theta1, theta2);
 		std::array<double, row_len> v {};

@@ -39,6 +39,15 @@ namespace yltable {
 		return 1 - w * w;
 	}
 
+	// A table on these nodes (data/young_laplace_table.csv, data/transfer_table.csv): rows of row_len
+	// numbers in node order, each starting with its node (ln V*, theta, rho). The row of node (i, j, k):
+	inline const double* node_row(const double* table, int row_len, int i, int j, int k)
+	{
+		return table + ((size_t(i) * n_theta + j) * n_rho + k) * row_len;
+	}
+	// Throws std::logic_error naming `file` if a row's node differs from the axes (a stale table).
+	void check_nodes(const double* table, int row_len, const char* file);
+
 	// Where a bridge lies among the nodes: cubic Lagrange stencils in ln V*, theta and sqrt(1 - rho)
 	// (a plane has its own slice, nk = 1). Shared by the force table and the exact transfer table
 	// (transfer_table.cpp), which have the same nodes.
