@@ -1,4 +1,5 @@
 #include "Pendular.hpp"
+#include "PendularLoop.hpp"
 
 #include <core/InteractionLoop.hpp>
 
@@ -118,6 +119,7 @@ namespace {
 	py::object *yadeErase = nullptr, *yadeClear = nullptr, *yadeIntrErase = nullptr, *yadeIntrClear = nullptr;
 	py::object  guardedErase(py::tuple args, py::dict kw) // BodyContainer.erase(self, id, eraseClumpMembers=False)
 	{
+		PendularLoop::syncCurrent(true); // the liquid accounts read the objects, which then change
 		py::extract<int> id(py::len(args) > 1 ? py::object(args[1]) : kw.get("id"));
 		const py::object members = py::len(args) > 2 ? py::object(args[2]) : kw.get("eraseClumpMembers", false);
 		if (id.check()) forEachLaw([&](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) { law.eraseBody(scene, id(), PyObject_IsTrue(members.ptr()) == 1); });
@@ -125,11 +127,13 @@ namespace {
 	}
 	py::object guardedClear(py::tuple args, py::dict kw)
 	{
+		PendularLoop::syncCurrent(true); // the liquid accounts read the objects, which then change
 		forEachLaw([](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) { law.clearBodies(scene); });
 		return (*yadeClear)(*args, **kw);
 	}
 	py::object guardedIntrErase(py::tuple args, py::dict kw) // InteractionContainer.erase(self, id1, id2)
 	{
+		PendularLoop::syncCurrent(true); // the liquid accounts read the objects, which then change
 		if (py::len(args) > 2) {
 			py::extract<int> id1(args[1]), id2(args[2]);
 			if (id1.check() && id2.check())
@@ -142,6 +146,7 @@ namespace {
 	}
 	py::object guardedIntrClear(py::tuple args, py::dict kw)
 	{
+		PendularLoop::syncCurrent(true); // the liquid accounts read the objects, which then change
 		forEachLaw([](Law2_ScGeom_PendularPhys_Bridge& law, Scene* scene) {
 			for (const auto& I : *scene->interactions) law.releasePair(scene, *I);
 		});

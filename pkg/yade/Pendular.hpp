@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <type_traits>
 #include <vector>
 
 namespace yade {
@@ -289,11 +290,13 @@ public:
 	// Used by go() (YADE's InteractionLoop) and by PendularLoop, so both compute the same numbers.
 	// Sink: force(f) for a central force, forceTorque(f, t1, t2) with the torques on bodies 1, 2.
 	// rotate(v): ScGeom::rotate, the shear force carried from the last contact plane to this one.
-	template <class Rotate, class Sink>
-	bool apply(const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink);
+	// Geom, Phys: ScGeom and PendularPhys, or PendularLoop's record of a fixed-volume inviscid
+	// sphere-sphere bridge, which has their members of the same names (see PendularLoop::Record).
+	template <class Geom, class Phys, class Rotate, class Sink>
+	bool apply(const Geom& geom, Phys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink);
 	// Breaks the bridge (totals if owned; film: its liquid back to the films at the end of the step)
 	// and returns false: the interaction is to be reset.
-	bool breakBridge(PendularPhys& phys, const PendularKinematics& k);
+	template <class Phys> bool breakBridge(Phys& phys, const PendularKinematics& k);
 	// Film mode, at the end of each step (PendularCheck, serial): forms the bridges asked for in the
 	// step, sharing each film among all the bridges formed on it (Elskamp2018 section 2.2.1), then
 	// adds the liquid of the bridges broken in the step to the films. Throws std::invalid_argument if
@@ -393,76 +396,87 @@ inline PendularViscousMoments pendularViscous(const ScGeom& geom, PendularPhys& 
 		 wall2 ? Vector3r((geom.contactPoint - k.pos2 - k.shift2).cross(-force1)) : Vector3r(arm2 * nxF1) };
 }
 
-inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(PendularPhys& phys, const PendularKinematics& k)
+// Only a PendularPhys can hold a film-mode or viscous bridge; PendularLoop's records hold the others.
+template <class Phys> constexpr bool pendularFullPhys = std::is_same<Phys, PendularPhys>::value;
+
+template <class Phys> inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(Phys& phys, const PendularKinematics& k)
 {
-	phys.active       = false;
-	phys.Fcap         = 0;
-	phys.Fvisc        = 0;
-	phys.viscousShear = Vector3r::Zero();
+	phys.active = false;
+	phys.Fcap   = 0;
 	if (k.owned) {
 		nBridges -= 1;
 		liquidVolume -= phys.Vb;
 		liquidReleased += phys.Vb;
 	}
-	if (phys.film) {
-		// Whether the other body holds a film is read now: filmArea may have changed since the bridge formed.
-		const FilmPair ids        = filmPair(phys, k.id1, k.id2);
-		const auto*    otherState = static_cast<const PendularState*>(Body::byId(ids.other, scene)->state.get());
-		const Real     toSphere   = sphereShare(phys, otherState->holds(phys.R2));
-		const std::lock_guard<std::mutex> lock(filmMutex);
-		returns.push_back({ ids.sphere, toSphere });
-		returns.push_back({ ids.other, phys.Vb - toSphere });
+	if constexpr (pendularFullPhys<Phys>) {
+		phys.Fvisc        = 0;
+		phys.viscousShear = Vector3r::Zero();
+		if (phys.film) {
+			// Whether the other body holds a film is read now: filmArea may have changed since the bridge formed.
+			const FilmPair ids        = filmPair(phys, k.id1, k.id2);
+			const auto*    otherState = static_cast<const PendularState*>(Body::byId(ids.other, scene)->state.get());
+			const Real     toSphere   = sphereShare(phys, otherState->holds(phys.R2));
+			const std::lock_guard<std::mutex> lock(filmMutex);
+			returns.push_back({ ids.sphere, toSphere });
+			returns.push_back({ ids.other, phys.Vb - toSphere });
+		}
 	}
 	return false;
 }
 
-template <class Rotate, class Sink>
+template <class Geom, class Phys, class Rotate, class Sink>
 inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
-        const ScGeom& geom, PendularPhys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink)
+        const Geom& geom, Phys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink)
 {
+	constexpr bool full = pendularFullPhys<Phys>; // else no film and no viscosity
 	if (geom.penetrationDepth < 0) { // separated
 		phys.shearForce = Vector3r::Zero();
 		if (!phys.active) {
 			phys.normalForce = Vector3r::Zero();
 			// Film mode, formation when the films touch: the pair is kept while they do.
-			if (phys.filmFormation && filmsTouch(phys, k, -geom.penetrationDepth)) {
-				if (!phys.pending) askFormation(phys, k);
-				return true;
-			}
+			if constexpr (full)
+				if (phys.filmFormation && filmsTouch(phys, k, -geom.penetrationDepth)) {
+					if (!phys.pending) askFormation(phys, k);
+					return true;
+				}
 			// No bridge yet (or dry): nothing to keep. Returning false resets the interaction, so the
 			// collider removes it once the bounding boxes part, and the Ig2 makes it real again at
 			// contact, where the bridge forms; a pair that stays close merely gets new physics.
 			return false;
 		}
 		const Real gap = -geom.penetrationDepth;
-		if (!phys.viscous) {
-			// An inviscid separated bridge needs only the gap and the normal: no tangential work, no torque.
-			if (gap > phys.bridge.rupture) return breakBridge(phys, k);
-			phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
-			phys.normalForce = -phys.Fcap * geom.normal;
-			sink.force(phys.normalForce);
-			return true;
-		}
-		const PendularViscousMoments m = pendularViscous(geom, phys, k, gap);
-		if (gap > phys.sRupture) return breakBridge(phys, k);
-		phys.Fcap        = capillary::bridge_force_within(phys.bridge, gap, phys.sRupture);
-		phys.normalForce = -(phys.Fcap + phys.Fvisc) * geom.normal;
-		sink.forceTorque(phys.normalForce + phys.viscousShear, m.torque1, m.torque2);
+		if constexpr (full)
+			if (phys.viscous) {
+				const PendularViscousMoments m = pendularViscous(geom, phys, k, gap);
+				if (gap > phys.sRupture) return breakBridge(phys, k);
+				phys.Fcap        = capillary::bridge_force_within(phys.bridge, gap, phys.sRupture);
+				phys.normalForce = -(phys.Fcap + phys.Fvisc) * geom.normal;
+				sink.forceTorque(phys.normalForce + phys.viscousShear, m.torque1, m.torque2);
+				return true;
+			}
+		// An inviscid separated bridge needs only the gap and the normal: no tangential work, no torque.
+		if (gap > phys.bridge.rupture) return breakBridge(phys, k);
+		phys.Fcap        = capillary::bridge_force(phys.bridge, gap);
+		phys.normalForce = -phys.Fcap * geom.normal;
+		sink.force(phys.normalForce);
 		return true;
 	}
 
 	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
 	if (!(phys.kn > 0)) return false;
 	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
-	if (phys.wet && !phys.active && phys.film) {
-		if (!phys.pending) askFormation(phys, k); // formed by settleFilms at the end of the step
-	} else if (phys.wet && !phys.active) {
-		phys.active = true;
-		if (k.owned) {
-			nBridges += 1;
-			liquidVolume += phys.Vb;
-			liquidFormed += phys.Vb;
-		}
+	if (phys.wet && !phys.active) {
+		bool film = false;
+		if constexpr (full) film = phys.film;
+		if (!film) {
+			phys.active = true;
+			if (k.owned) {
+				nBridges += 1;
+				liquidVolume += phys.Vb;
+				liquidFormed += phys.Vb;
+			}
+		} else if constexpr (full)
+			if (!phys.pending) askFormation(phys, k); // formed by settleFilms at the end of the step
 	}
 	const Vector3r c1x    = geom.contactPoint - k.pos1;
 	const Vector3r c2x    = geom.contactPoint - k.pos2 - k.shift2;
@@ -487,13 +501,14 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		shear = Vector3r::Zero();
 	}
 	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
-	if (phys.viscous && phys.active) { // the bridge's viscous forces also act in contact, at S_eff = S_min
-		const PendularViscousMoments m = pendularViscous(geom, phys, k, -geom.penetrationDepth);
-		phys.normalForce               = (fn - phys.Fcap - phys.Fvisc) * geom.normal;
-		const Vector3r f               = phys.normalForce + shear + shearVisc; // acts at the contact point
-		sink.forceTorque(f + phys.viscousShear, m.torque1 - c1x.cross(f), m.torque2 + c2x.cross(f));
-		return true;
-	}
+	if constexpr (full)
+		if (phys.viscous && phys.active) { // the bridge's viscous forces also act in contact, at S_eff = S_min
+			const PendularViscousMoments m = pendularViscous(geom, phys, k, -geom.penetrationDepth);
+			phys.normalForce               = (fn - phys.Fcap - phys.Fvisc) * geom.normal;
+			const Vector3r f               = phys.normalForce + shear + shearVisc; // acts at the contact point
+			sink.forceTorque(f + phys.viscousShear, m.torque1 - c1x.cross(f), m.torque2 + c2x.cross(f));
+			return true;
+		}
 	phys.normalForce = (fn - phys.Fcap) * geom.normal;
 	const Vector3r f = phys.normalForce + shear + shearVisc;
 	sink.forceTorque(f, -c1x.cross(f), c2x.cross(f));

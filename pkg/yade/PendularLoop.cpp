@@ -6,7 +6,11 @@
 
 #include <pkg/dem/ViscoelasticCapillarPM.hpp>
 
+#include <core/Omega.hpp>
+#include <mpi.h>
+
 #include <chrono>
+#include <set>
 #include <typeinfo>
 
 #ifdef YADE_OPENMP
@@ -17,6 +21,7 @@ namespace yade {
 
 YADE_PLUGIN((PendularLoop));
 CREATE_LOGGER(PendularLoop);
+bool PendularLoop::readersGuarded = false;
 
 namespace {
 	// The pass is bound by memory latency: an interaction is three heap objects (Interaction, ScGeom,
@@ -185,45 +190,90 @@ void PendularLoop::action()
 	removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
-	long             fused = 0, dispatchedCount = 0, apart = 0;
+	long             fused = 0, dispatchedCount = 0, apart = 0, recorded = 0;
+	// The records belong to one scene, and only to the steps where nothing else reads the objects.
+	const bool recording = recordsAllowed(r);
+	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true);
+	recordScene = scene;
+	loopThread  = std::this_thread::get_id();
 	slots.resize(size);
+	toRecord.resize(threads);
+	toForget.resize(threads);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
 	// Static schedule: each thread gets the same interactions in every run, so a run with a given
 	// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
 	// spread evenly over the container (one half per thread left one thread idle a third of the time).
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static, 1024) num_threads(threads) reduction(+ : fused, dispatchedCount, apart)
+#pragma omp parallel for schedule(static, 1024) num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded)
 #endif
 	for (long i = 0; i < size; ++i) {
-		// Two levels: the Interaction (unless a potential one seen before), then, once it is cached,
-		// the geometry and physics of a real one.
+		// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
+		// cached, the geometry and physics of a real one that has no record.
 		if (i + 2 * prefetchAhead < size) {
 			const Slot& ahead = slots[i + 2 * prefetchAhead];
 			const auto& J     = interactions[i + 2 * prefetchAhead];
-			if (!(ahead.potential && ahead.same(J))) prefetchObject(J.get());
+			if (ahead.same(J)) {
+				if (ahead.record >= 0) prefetchObject(&records[ahead.record]);
+				else if (!ahead.potential) prefetchObject(J.get());
+			} else
+				prefetchObject(J.get());
 		}
 		if (i + prefetchAhead < size) {
 			const Slot& ahead = slots[i + prefetchAhead];
 			const auto& J     = interactions[i + prefetchAhead];
-			if (!ahead.potential && ahead.same(J)) {
+			if (!ahead.potential && ahead.record < 0 && ahead.same(J)) {
 				if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
 				if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
 			}
 		}
 		const shared_ptr<Interaction>& I    = interactions[i];
 		Slot&                          slot = slots[i];
-		// A potential interaction of two PendularMat spheres seen in an earlier step (same object,
-		// so the same ids; it became real only in this loop, which updates the slot): one distance
-		// check on the gathered data, without reading the Interaction.
-		if (skipApart && slot.potential && slot.same(I)) {
-			const Near& q1 = near[slot.id1];
-			const Near& q2 = near[slot.id2];
-			if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
-				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
-				if ((q2.pos - q1.pos).squaredNorm() > sumR * sumR) {
+		if (!slot.same(I)) {
+			// Another interaction than in the last step: new, or moved here by an erasure, with its record.
+			slot.record = -1;
+			if (!recordOf.empty()) {
+				const auto it = recordOf.find(I.get());
+				if (it != recordOf.end()) {
+					slot.interaction = I;
+					slot.record      = it->second;
+					slot.id1         = records[it->second].id1;
+					slot.id2         = records[it->second].id2;
+					slot.potential   = false;
+				}
+			}
+		}
+		if (slot.same(I)) {
+			if (slot.record >= 0) {
+				Record& rec = records[slot.record];
+				if (particles[rec.id1].kind == pendularSphere && particles[rec.id2].kind == pendularSphere
+				    && particles[rec.id1].subdomain == scene->subdomain && particles[rec.id2].subdomain == scene->subdomain) {
 					++fused;
-					++apart;
+					++recorded;
+					if (!recordStep(rec, r, threadNum())) {
+						scene->interactions->requestErase(I);
+						toForget[threadNum()].push_back(slot.record);
+						slot.record    = -1;
+						slot.potential = true;
+					}
 					continue;
+				}
+				// A body is gone or has changed (material, shape, subdomain): the objects decide again.
+				store(rec);
+				toForget[threadNum()].push_back(slot.record);
+				slot.record = -1;
+			} else if (skipApart && slot.potential) {
+				// A potential interaction of two PendularMat spheres seen in an earlier step (same
+				// object, so the same ids; it became real only in this loop, which updates the slot):
+				// one distance check on the gathered data, without reading the Interaction.
+				const Near& q1 = near[slot.id1];
+				const Near& q2 = near[slot.id2];
+				if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
+					const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
+					if ((q2.pos - q1.pos).squaredNorm() > sumR * sumR) {
+						++fused;
+						++apart;
+						continue;
+					}
 				}
 			}
 		}
@@ -231,19 +281,171 @@ void PendularLoop::action()
 		// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the
 		// control block, one more cache line per interaction and step.
 		if (!slot.same(I)) slot.interaction = I;
-		slot.id1         = I->getId1();
-		slot.id2         = I->getId2();
-		slot.potential   = !I->isReal();
+		slot.id1       = I->getId1();
+		slot.id2       = I->getId2();
+		slot.potential = !I->isReal();
+		if (recording && !slot.potential && recordable(*I, r)) toRecord[threadNum()].push_back(i);
 	}
 	nFused        = fused;
 	nDispatched   = dispatchedCount;
 	nApart        = apart;
+	nRecorded     = recorded;
+	settleRecords();
+	stale         = !recordOf.empty();
 	const auto t2 = Clock::now();
 	flushForces(threads);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
 }
+
+// Which engines may run beside recorded interactions: those known not to read or change the
+// interactions' geometry and physics in a step (PyRunner's Python reads them through the wrapped
+// attributes, which write the records into the objects first).
+bool PendularLoop::recordsAllowed(const Resolved& r) const
+{
+	if (!keepRecords || !readersGuarded || !r.fused || scene->isPeriodic || !callbacks.empty()) return false;
+	int initialized = 0, finalized = 0, ranks = 1;
+	MPI_Initialized(&initialized);
+	MPI_Finalized(&finalized);
+	if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+	if (ranks > 1) return false;
+	static const std::set<std::string> known { "ForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck", "NewtonIntegrator",
+		                                   "PyRunner", "RotationEngine" };
+	for (const auto& e : scene->engines)
+		if (e && !known.count(e->getClassName())) return false;
+	return true;
+}
+
+// A real sphere-sphere interaction of the fused pass whose state fits a Record: a fixed-volume
+// inviscid bridge (or none) on ScGeom, with valid contact parameters.
+bool PendularLoop::recordable(const Interaction& I, const Resolved& r) const
+{
+	if (!r.fused || particles[I.getId1()].kind != pendularSphere || particles[I.getId2()].kind != pendularSphere) return false;
+	if (particles[I.getId1()].subdomain != scene->subdomain || particles[I.getId2()].subdomain != scene->subdomain) return false;
+	if (!I.geom || !I.phys || typeid(*I.geom) != typeid(ScGeom) || typeid(*I.phys) != typeid(PendularPhys)) return false;
+	const auto& phys = static_cast<const PendularPhys&>(*I.phys);
+	return !phys.film && !phys.viscous && phys.kn > 0;
+}
+
+void PendularLoop::load(Record& rec, const shared_ptr<Interaction>& I) const
+{
+	const auto& geom           = static_cast<const ScGeom&>(*I->geom);
+	const auto& phys           = static_cast<const PendularPhys&>(*I->phys);
+	rec.normal                 = geom.normal;
+	rec.contactPoint           = geom.contactPoint;
+	rec.shearInc               = geom.shearInc;
+	rec.penetrationDepth       = geom.penetrationDepth;
+	rec.radius1                = geom.radius1;
+	rec.radius2                = geom.radius2;
+	rec.normalForce            = phys.normalForce;
+	rec.shearForce             = phys.shearForce;
+	rec.Fcap                   = phys.Fcap;
+	rec.kn                     = phys.kn;
+	rec.cn                     = phys.cn;
+	rec.ks                     = phys.ks;
+	rec.cs                     = phys.cs;
+	rec.tangensOfFrictionAngle = phys.tangensOfFrictionAngle;
+	rec.Vb                     = phys.Vb;
+	rec.bridge                 = phys.bridge;
+	rec.wet                    = phys.wet;
+	rec.active                 = phys.active;
+	rec.forceInContact         = phys.forceInContact;
+	rec.isActive               = I->isActive;
+	rec.id1                    = I->getId1();
+	rec.id2                    = I->getId2();
+	rec.interaction            = I;
+}
+
+// What a step changes: the geometry, the forces and whether the bridge exists.
+void PendularLoop::store(const Record& rec) const
+{
+	Interaction& I = *rec.interaction;
+	if (!I.geom || !I.phys) return; // reset by the law in this step
+	auto& geom            = static_cast<ScGeom&>(*I.geom);
+	auto& phys            = static_cast<PendularPhys&>(*I.phys);
+	geom.normal           = rec.normal;
+	geom.contactPoint     = rec.contactPoint;
+	geom.shearInc         = rec.shearInc;
+	geom.penetrationDepth = rec.penetrationDepth;
+	geom.radius1          = rec.radius1;
+	geom.radius2          = rec.radius2;
+	phys.normalForce      = rec.normalForce;
+	phys.shearForce       = rec.shearForce;
+	phys.Fcap             = rec.Fcap;
+	phys.active           = rec.active;
+}
+
+bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
+{
+	const Particle& p1     = particles[rec.id1];
+	const Particle& p2     = particles[rec.id2];
+	Vector3r        normal = p2.pos - p1.pos;
+	const Real      norm   = normal.norm();
+	normal /= norm;
+	const Vector3r zero     = Vector3r::Zero();
+	const Rotation rotation = sphereGeometry(rec, p1, p2, normal, p1.radius + p2.radius - norm, zero, zero, false, r);
+	return applyLaw(rec.id1, rec.id2, rec.isActive, rec, rec, r, zero, zero, rotation, thread);
+}
+
+// After the pass, in one thread: frees the records of the interactions reset or handed back to the
+// objects, and records the interactions that qualified.
+void PendularLoop::settleRecords()
+{
+	for (auto& list : toForget) {
+		for (const int index : list) {
+			Record& rec = records[index];
+			recordOf.erase(rec.interaction.get());
+			rec.interaction.reset();
+			freeRecords.push_back(index);
+		}
+		list.clear();
+	}
+	const auto& interactions = *scene->interactions;
+	for (auto& list : toRecord) {
+		for (const long i : list) {
+			int index;
+			if (freeRecords.empty()) {
+				index = int(records.size());
+				records.emplace_back();
+			} else {
+				index = freeRecords.back();
+				freeRecords.pop_back();
+			}
+			load(records[index], interactions[i]);
+			slots[i].record                    = index;
+			recordOf[interactions[i].get()] = index;
+		}
+		list.clear();
+	}
+}
+
+void PendularLoop::syncObjects(bool drop)
+{
+	if (stale)
+		for (const auto& entry : recordOf)
+			store(records[entry.second]);
+	stale = false;
+	if (!drop) return;
+	records.clear();
+	freeRecords.clear();
+	recordOf.clear();
+	for (auto& slot : slots)
+		slot.record = -1;
+}
+
+void PendularLoop::syncScene(Scene* scene, bool drop)
+{
+	if (!scene) return;
+	for (const auto& e : scene->engines) {
+		auto* loop = dynamic_cast<PendularLoop*>(e.get());
+		if (!loop || loop->recordOf.empty()) continue;
+		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) continue;
+		loop->syncObjects(drop);
+	}
+}
+
+void PendularLoop::syncCurrent(bool drop) { syncScene(Omega::instance().getScene().get(), drop); }
 
 boost::python::dict PendularLoop::memory() const
 {
@@ -255,6 +457,7 @@ boost::python::dict PendularLoop::memory() const
 	d["particle"]      = sizeof(Particle);
 	d["near"]          = sizeof(Near);
 	d["slot"]          = sizeof(Slot);
+	d["record"]        = sizeof(Record);
 	d["forces"]        = 2 * sizeof(Vector3r);
 	return d;
 }
@@ -298,7 +501,6 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 	// touch, with formation='films').
 	if (!wasReal && normal.squaredNorm() > (sumR + reach) * (sumR + reach)) return;
 
-	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute, in their order of operations.
 	const bool isNew = !I->geom;
 	if (isNew) I->geom = shared_ptr<ScGeom>(new ScGeom());
 	ScGeom&    geom = static_cast<ScGeom&>(*I->geom);
@@ -309,19 +511,35 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 		I->geom.reset();
 		return;
 	}
+	const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
+	const Rotation rotate   = sphereGeometry(geom, p1, p2, normal, depth, shift2, shiftVel, isNew, r);
+	if (!I->phys) {
+		const auto& b1 = Body::byId(I->getId1(), scene);
+		const auto& b2 = Body::byId(I->getId2(), scene);
+		r.ip2->go(b1->material, b2->material, I);
+	}
+	if (!wasReal) I->iterMadeReal = scene->iter;
+	if (!applyLaw(I->getId1(), I->getId2(), I->isActive, geom, static_cast<PendularPhys&>(*I->phys), r, shift2, shiftVel, rotate, thread)) {
+		scene->interactions->requestErase(I);
+		return;
+	}
+	callbacksOn(*I, r);
+}
+
+template <class Geom>
+PendularLoop::Rotation PendularLoop::sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth,
+                                                    const Vector3r& shift2, const Vector3r& shiftVel, bool isNew, const Resolved& r) const
+{
 	geom.contactPoint     = p1.pos + (p1.radius - 0.5 * depth) * normal;
 	geom.penetrationDepth = depth;
 	geom.radius1          = p1.radius;
 	geom.radius2          = p2.radius;
-	const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
-	// ScGeom::rotate's rotation of the shear force from the last normal to this one (its axes are
-	// private to ScGeom: kept here, and used by the law through `rotate`).
-	Vector3r orthonormalAxis = Vector3r::Zero(), twistAxis = Vector3r::Zero();
+	Rotation rotation;
 	if (depth >= 0 || isNew) { // in contact: what the law's tangential spring reads
 		if (!isNew) {
-			orthonormalAxis  = geom.normal.cross(normal);
-			const Real angle = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
-			twistAxis        = angle * geom.normal;
+			rotation.orthonormalAxis = geom.normal.cross(normal);
+			const Real angle         = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
+			rotation.twistAxis       = angle * geom.normal;
 		}
 		geom.normal = normal;
 		Vector3r relVel;
@@ -338,34 +556,19 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 		geom.shearInc = relVel * scene->dt;
 	} else
 		geom.normal = normal; // a separated bridge: the gap and the normal only
-	const auto rotate = [&orthonormalAxis, &twistAxis](Vector3r& v) {
-		v -= v.cross(orthonormalAxis);
-		v -= v.cross(twistAxis);
-	};
-
-	if (!I->phys) {
-		const auto& b1 = Body::byId(I->getId1(), scene);
-		const auto& b2 = Body::byId(I->getId2(), scene);
-		r.ip2->go(b1->material, b2->material, I);
-	}
-	if (!wasReal) I->iterMadeReal = scene->iter;
-	if (!applyLaw(*I, geom, r, shift2, shiftVel, rotate, thread)) {
-		scene->interactions->requestErase(I);
-		return;
-	}
-	callbacksOn(*I, r);
+	return rotation;
 }
 
-template <class Rotate>
-bool PendularLoop::applyLaw(
-        const Interaction& I, const ScGeom& geom, const Resolved& r, const Vector3r& shift2, const Vector3r& shiftVel, const Rotate& rotate, int thread)
+template <class Geom, class Phys, class Rotate>
+bool PendularLoop::applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const Geom& geom, Phys& phys, const Resolved& r, const Vector3r& shift2,
+                            const Vector3r& shiftVel, const Rotate& rotate, int thread)
 {
-	const Particle&          p1 = particles[I.getId1()];
-	const Particle&          p2 = particles[I.getId2()];
+	const Particle&          p1 = particles[id1];
+	const Particle&          p2 = particles[id2];
 	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
-		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), I.getId1(), I.getId2() };
-	ThreadSink               sink { threadForce[thread].data(), threadTorque[thread].data(), I.getId1(), I.getId2(), I.isActive };
-	return r.law->apply(geom, static_cast<PendularPhys&>(*I.phys), k, scene->dt, rotate, sink);
+		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), id1, id2 };
+	ThreadSink               sink { threadForce[thread].data(), threadTorque[thread].data(), id1, id2, isActive };
+	return r.law->apply(geom, phys, k, scene->dt, rotate, sink);
 }
 
 void PendularLoop::callbacksOn(Interaction& I, const Resolved& r)
@@ -421,7 +624,8 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 	if (r.law && I->functorCache.constLaw.get() == r.law) {
 		const ScGeom&  geom     = static_cast<const ScGeom&>(*I->geom);
 		const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
-		keep                    = applyLaw(*I, geom, r, shift2, shiftVel, [&geom](Vector3r& v) { geom.rotate(v); }, thread);
+		keep = applyLaw(I->getId1(), I->getId2(), I->isActive, geom, static_cast<PendularPhys&>(*I->phys), r, shift2, shiftVel,
+		                [&geom](Vector3r& v) { geom.rotate(v); }, thread);
 	} else
 		keep = I->functorCache.constLaw->go(I->geom, I->phys, I.get());
 	if (!keep) scene->interactions->requestErase(I);

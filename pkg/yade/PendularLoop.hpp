@@ -6,6 +6,8 @@
 
 #include <boost/weak_ptr.hpp>
 #include <cstdint>
+#include <thread>
+#include <unordered_map>
 #include <vector>
 
 namespace yade {
@@ -23,9 +25,42 @@ public:
 	};
 	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
 
+	// A sphere-sphere interaction with a fixed-volume inviscid bridge (or none), between two steps:
+	// the members of ScGeom and PendularPhys that the law reads and writes, under their names, in one
+	// contiguous array, so that a step reads and writes 5 cache lines per interaction instead of the
+	// Interaction, ScGeom and PendularPhys objects (about 12, scattered over the heap). The objects are
+	// brought up to date whenever something may read them (syncScene).
+	struct alignas(64) Record { // on cache-line boundaries: the first three lines change in a step, the last three are read only
+		// ScGeom
+		Vector3r normal, contactPoint, shearInc;
+		Real     penetrationDepth, radius1, radius2;
+		// PendularPhys
+		Vector3r normalForce, shearForce;
+		Real     Fcap;
+		bool     active;
+		// read only
+		alignas(64) capillary::Bridge bridge;
+		Real                          kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
+		bool                          wet, forceInContact;
+		bool                          isActive; // Interaction::isActive
+		Body::id_t                    id1, id2;
+		shared_ptr<Interaction>       interaction; // kept alive while recorded; read only when loaded, stored or reset
+	};
+
 	void action() override;
 	// sizeof of what an interaction and a body cost, for the memory benchmark.
 	boost::python::dict memory() const;
+	// Brings the Interaction, ScGeom and PendularPhys objects of the records of the PendularLoop
+	// engines of `scene` up to date; drop: also forget the records, so that the next step reads the
+	// objects again (after anything that may have changed them). Skipped while the simulation runs
+	// in another thread than the caller's (YADE's own objects are not safe to read then either).
+	static void syncScene(Scene* scene, bool drop);
+	// The same for the current scene (Python: PendularLoop.sync).
+	static void syncCurrent(bool drop);
+	// Records are kept only once the Python paths that read or change the objects call sync
+	// (yade_capillary.objects.guard, run when yade_capillary.scene is imported).
+	static bool readersGuarded;
+	static void guardReaders() { readersGuarded = true; }
 	DECLARE_LOGGER;
 
 private:
@@ -35,10 +70,34 @@ private:
 	void step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
-	// Our law, inline, on the gathered data, into the thread's force arrays; false: reset I.
-	template <class Rotate>
-	bool applyLaw(const Interaction& I, const ScGeom& geom, const Resolved& r, const Vector3r& shift2, const Vector3r& shiftVel, const Rotate& rotate,
-	              int thread);
+	// ScGeom::rotate's rotation of the shear force from the last normal to this one (its axes are
+	// private to ScGeom: kept here, and used by the law).
+	struct Rotation {
+		Vector3r orthonormalAxis = Vector3r::Zero(), twistAxis = Vector3r::Zero();
+		void     operator()(Vector3r& v) const
+		{
+			v -= v.cross(orthonormalAxis);
+			v -= v.cross(twistAxis);
+		}
+	};
+	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute after the distance, in their order of
+	// operations, on an ScGeom or a Record: `normal` the unit vector from centre 1 to centre 2, `depth`
+	// the overlap.
+	template <class Geom>
+	Rotation sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& shift2,
+	                        const Vector3r& shiftVel, bool isNew, const Resolved& r) const;
+	// Our law, inline, on the gathered data, into the thread's force arrays; false: reset the interaction.
+	template <class Geom, class Phys, class Rotate>
+	bool applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const Geom& geom, Phys& phys, const Resolved& r, const Vector3r& shift2,
+	              const Vector3r& shiftVel, const Rotate& rotate, int thread);
+	// One step of a recorded interaction; false: reset it.
+	bool recordStep(Record& rec, const Resolved& r, int thread);
+	bool recordable(const Interaction& I, const Resolved& r) const;
+	void load(Record& rec, const shared_ptr<Interaction>& I) const;
+	void store(const Record& rec) const;
+	void syncObjects(bool drop);
+	void settleRecords();
+	bool recordsAllowed(const Resolved& r) const;
 	void callbacksOn(Interaction& I, const Resolved& r);
 	void flushForces(int threads);
 
@@ -48,6 +107,7 @@ private:
 	struct Slot {
 		boost::weak_ptr<Interaction> interaction;
 		Body::id_t                   id1 = 0, id2 = 0;
+		int                          record    = -1; // index in records, or -1
 		bool                         potential = false;
 		bool same(const shared_ptr<Interaction>& I) const { return !interaction.owner_before(I) && !I.owner_before(interaction); }
 	};
@@ -63,6 +123,16 @@ private:
 	};
 	std::vector<Near>                  near;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
+	// The records, their free entries, and which interaction has which (for an interaction that an
+	// erasure moved to another entry of the container). Changed only between the passes.
+	std::vector<Record>                            records;
+	std::vector<int>                               freeRecords;
+	std::unordered_map<const Interaction*, int>    recordOf;
+	std::vector<std::vector<long>>                 toRecord;   // per thread: container entries to record after the pass
+	std::vector<std::vector<int>>                  toForget;   // per thread: records to free after the pass
+	bool                                           stale = false; // the records are newer than the objects
+	Scene*                                         recordScene = nullptr;
+	std::thread::id                                loopThread;
 	Matrix3r                           cellHsize = Matrix3r::Zero();
 
 public:
@@ -81,11 +151,17 @@ public:
 		((long, nFused, 0, Attr::readonly, "Interactions handled by the fused sphere-sphere pass in the last step [-] (real and potential)."))
 		((long, nDispatched, 0, Attr::readonly, "Interactions handled through the dispatchers in the last step [-] (walls, facets, other materials)."))
 		((long, nApart, 0, Attr::readonly, "Of nFused, the potential interactions found apart by the distance check alone in the last step [-]."))
+		((long, nRecorded, 0, Attr::readonly, "Of nFused, the interactions computed from the loop's own records in the last step [-] (see keepRecords)."))
+		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps (the objects I.geom and I.phys are written when read: from Python, by O.save, by YADE's utils functions); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))
 		((Real, gatherTime, 0, , "Wall time spent gathering the bodies' positions and velocities since this was last set to 0 [ns]."))
 		((Real, passTime, 0, , "Wall time spent in the pass over the interactions since this was last set to 0 [ns]."))
 		((Real, flushTime, 0, , "Wall time spent handing the summed forces to the force container since this was last set to 0 [ns].")),
 		/*ctor*/,
 		/*py*/
+		.def("sync", &PendularLoop::syncCurrent, (boost::python::arg("drop") = false), "Write the loop's records into the Interaction, ScGeom and PendularPhys objects of the current scene (drop: and read the objects again at the next step). Called by the wrapped Python paths that read or change them (attributes of the geometry and physics, O.save, yade.utils functions); not needed in user code.")
+		.staticmethod("sync")
+		.def("readersGuarded", &PendularLoop::guardReaders, "Declare that the Python paths that read or change interactions call sync (yade_capillary.objects.guard does it); before, no records are kept.")
+		.staticmethod("readersGuarded")
 		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
 	);
 	// clang-format on

@@ -43,11 +43,14 @@ def build(material, n, seed, vel, film=0.0):
     O.dt = TC / 50
 
 
-def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0):
+def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, records=True):
     """Run `steps` steps; return dict with ns per interaction-step of the interaction loop (and,
-    for PendularLoop, its phases: gathering the bodies, the pass, the force hand-over)."""
+    for PendularLoop, its phases: gathering the bodies, the pass, the force hand-over).
+    records: PendularLoop.keepRecords."""
     build(material, n, seed, vel, film)
     O.engines = engines(loop=loop)
+    if hasattr(O.engines[2], "keepRecords"):
+        O.engines[2].keepRecords = records
     O.step()  # first step: collider and interaction creation, not timed
     O.timingEnabled = True
     for e in O.engines:
@@ -81,20 +84,23 @@ def builtin_run(capillar_type, n, steps, seed, vel):
                                    [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
 
 
-def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett", liquid="fixed"):
+def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett", liquid="fixed", records=True):
     """Our law on the benchmark scene, in `loop` ("standard": YADE's InteractionLoop, "fused":
     PendularLoop); friction: contact friction angle [rad] (0: no tangential spring); eta: liquid
     viscosity [Pa s] (0: no viscous term); rupture: rupture rule (e.g. "willett+pitois"); liquid:
     "fixed" (Vb per bridge) or "film" (every sphere carries FILM, bridges of about Vb from the films,
-    formed by PendularCheck at the end of the step, returned to the films at rupture)."""
+    formed by PendularCheck at the end of the step, returned to the films at rupture); records:
+    PendularLoop.keepRecords (False: the loop reads and writes YADE's objects at every step)."""
     label = "yade-capillary %s, %s, friction %g" % (model, "PendularLoop" if loop == "fused" else "Law2 in InteractionLoop", friction)
+    if loop == "fused" and not records:
+        label += ", without records"
     if eta > 0:
         label += ", eta %g Pa s%s" % (eta, ", rupture %s" % rupture if rupture != "willett" else "")
     if liquid == "film":
         label += ", liquid on the particles (film)"
     return measure(label, PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB if liquid == "fixed" else 1e-6,
                                       gamma=GAMMA, theta=0, model=model, eta=eta, rupture=rupture, liquid=liquid),
-                   loop, n, steps, seed, vel, film=FILM if liquid == "film" else 0.0)
+                   loop, n, steps, seed, vel, film=FILM if liquid == "film" else 0.0, records=records)
 
 
 def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
@@ -102,8 +108,10 @@ def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_m
     Law2 in YADE's InteractionLoop, PendularLoop frictionless and with friction 0.5 rad, and
     PendularLoop frictionless with a viscous liquid (water, eta = 1 mPa s; Elskamp 2018 eq. 26, 28, 29),
     with and without Pitois' dynamic rupture distance (eq. 33): the cost of the viscous terms against
-    the same scene with eta = 0, which evaluates none of them; and PendularLoop frictionless with the
-    liquid on the particles (liquid='film'): the cost of the film bookkeeping against fixed volumes.
+    the same scene with eta = 0, which evaluates none of them; PendularLoop frictionless with the
+    liquid on the particles (liquid='film'): the cost of the film bookkeeping against fixed volumes;
+    and PendularLoop frictionless without its records (keepRecords=False: the Interaction, ScGeom and
+    PendularPhys objects read and written at every step).
 
     The zero-force variant (CapillarType "None": the built-in law with the same bookkeeping and a
     capillary force of 0) is the floor of YADE's interaction loop, geometry and dispatch, which no
@@ -116,11 +124,23 @@ def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_m
                 lambda: ours_run(model, "fused", 0.5, n, steps, seed, vel),
                 lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3),
                 lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, eta=1e-3, rupture="willett+pitois"),
-                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, liquid="film")]
+                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, liquid="film"),
+                lambda: ours_run(model, "fused", 0.0, n, steps, seed, vel, records=False)]
     runs = [[] for _ in variants]
     for _ in range(repeats):
         for r, v in zip(runs, variants):
             r.append(v())
+    return [min(r, key=lambda x: x["ns_per_bridge_step"]) for r in runs]
+
+
+def records_effect(n=40, steps=200, seed=1, vel=0.005, model="willett_full", repeats=2):
+    """PendularLoop frictionless with and without its records on a packing too large for the caches
+    (n = 40: 64 000 spheres, about 169 000 bridges), interleaved `repeats` times; returns the
+    fastest of each, with records first."""
+    runs = [[], []]
+    for _ in range(repeats):
+        for r, records in zip(runs, (True, False)):
+            r.append(ours_run(model, "fused", 0.0, n, steps, seed, vel, records=records))
     return [min(r, key=lambda x: x["ns_per_bridge_step"]) for r in runs]
 
 

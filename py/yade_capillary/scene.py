@@ -5,6 +5,9 @@ from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceR
                           Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
                           PendularCheck, PendularLoop, PendularMat)
 
+from . import objects
+
+objects.guard()  # before any PendularLoop keeps records (see objects.py)
 
 LOOPS = ("fused", "standard")
 

@@ -5,6 +5,10 @@
 # - yade -j1: the fused pass does the operations of Ig2_Sphere_Sphere_ScGeom + the law in the
 #   same order and sums the forces of a body in the same order: positions, velocities, normal
 #   forces and liquid totals must be bit-identical.
+#   A PyRunner reads every interaction's geometry and physics every 500 steps and, once, makes one
+#   bridge inactive from Python: PendularLoop keeps most interactions in its own records between
+#   steps, so what Python reads and writes must go through them (yade_capillary.objects); the run
+#   with records must be bit-identical to the one without.
 # - yade -j2 (ctest runs this file with -j1 and with -j2), loops on one and on two threads: a
 #   body's forces are summed in another order (per thread, then across threads; the collider's
 #   parallel insertion can also change the order of interactions), so round-off (1e-16 relative)
@@ -39,7 +43,29 @@ def dry_neighbours():
                 O.bodies.append(sphere((x + 0.1 * RMIN * (j - 1.5), y + 0.1 * RMIN * (i - 1.5), z - 0.05 * RMIN * k), RMIN, material=mat))
 
 
-def run(loop, box, friction, threads):
+SNAPSHOT_EVERY = 500  # steps; a PyRunner reads every interaction mid-run (PendularLoop's records must be written first)
+
+
+def snapshot():
+    """Geometry and physics of every real interaction, read from Python inside the run (PyRunner),
+    and, at the second snapshot, the first real sphere-sphere interaction made inactive from Python
+    (its forces must stop acting in both loops)."""
+    rows = {}
+    for i in O.interactions:
+        g, p = i.geom, i.phys
+        rows[(i.id1, i.id2)] = (tuple(g.normal), g.penetrationDepth, tuple(g.contactPoint), tuple(g.shearInc), tuple(p.normalForce),
+                                tuple(p.shearForce), getattr(p, "Fcap", None), getattr(p, "active", None))
+    SNAPSHOTS.append((O.iter, rows))
+    if len(SNAPSHOTS) == 2:
+        pair = min(k for k, v in rows.items() if v[7] is not None and O.bodies[k[0]].shape.__class__.__name__ == "Sphere"
+                   and O.bodies[k[1]].shape.__class__.__name__ == "Sphere")
+        O.interactions[pair].isActive = False
+
+
+SNAPSHOTS = []
+
+
+def run(loop, box, friction, threads, snapshots=False, records=True):
     stress.box_packing(400, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.7, speed=0.1, friction=friction)
     if box == "walls":
         dry_neighbours()
@@ -50,12 +76,22 @@ def run(loop, box, friction, threads):
     O.dt = scene.stable_dt(0.1)
     engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
     engine.ompThreads = threads
+    if loop == "fused":
+        engine.keepRecords = records
+    if snapshots:
+        from yade.wrapper import PyRunner
+        del SNAPSHOTS[:]
+        O.engines = O.engines + [PyRunner(command="snapshot()", iterPeriod=SNAPSHOT_EVERY)]
     O.run(STEPS, True)
     law = stress.capillary_law()
     state = [(tuple(b.state.pos), tuple(b.state.vel), tuple(b.state.angVel)) for b in O.bodies if b is not None and b.dynamic]
     fn = {(i.id1, i.id2): (i.isReal, i.iterMadeReal, type(i.phys).__name__, tuple(i.phys.normalForce) if i.isReal else None)
           for i in O.interactions.all(False)}
-    return state, (law.nBridges, law.liquidVolume, law.liquidFormed, law.liquidReleased), fn, engine
+    return state, (law.nBridges, law.liquidVolume, law.liquidFormed, law.liquidReleased), fn, engine, list(SNAPSHOTS) if snapshots else None
+
+
+def without_separated_shear_inc(rows):
+    return {k: v[:3] + (v[3] if v[1] >= 0 else None, ) + v[4:] for k, v in rows.items()}
 
 
 def scaled_difference(a, b):
@@ -75,12 +111,24 @@ parallel = O.numThreads > 1
 for box in ("walls", "facets"):
     for friction in (0.3, 0.0):
         tag = "%s, friction %g" % (box, friction)
-        ref, ref_totals, ref_fn, _ = run("standard", box, friction, 1)
+        ref, ref_totals, ref_fn, _, ref_snaps = run("standard", box, friction, 1, snapshots=not parallel)
         ck.true(ref_totals[2] > ref_totals[1] > 0, "%s: bridges formed %g and broken, liquid now %g m^3" % (tag, ref_totals[2], ref_totals[1]))
         if not parallel:
-            one, one_totals, one_fn, loop = run("fused", box, friction, 1)
+            one, one_totals, one_fn, loop, snaps = run("fused", box, friction, 1, snapshots=True)
             ck.true(loop.nFused > 0 and loop.nDispatched > 0, "%s: the fused pass (%d) and the dispatchers (%d, walls/facets) were both used"
                     % (tag, loop.nFused, loop.nDispatched))
+            ck.true(loop.nRecorded > 0, "%s: %d interactions computed from PendularLoop's records in the last step" % (tag, loop.nRecorded))
+            ck.true([s[0] for s in snaps] == [s[0] for s in ref_snaps] and len(snaps) >= 3,
+                    "%s: %d snapshots read by a PyRunner in both loops" % (tag, len(snaps)))
+            # PendularLoop updates shearInc in contact only, where the law reads it (documented).
+            ck.true(all(without_separated_shear_inc(a[1]) == without_separated_shear_inc(b[1]) for a, b in zip(snaps, ref_snaps)),
+                    "%s: geometry and physics read from Python inside the run (normal, penetrationDepth, contactPoint, shearInc in contact, "
+                    "normalForce, shearForce, Fcap, active; %d interactions at step %d) bit-identical to InteractionLoop's"
+                    % (tag, len(snaps[-1][1]), snaps[-1][0]))
+            plain, plain_totals, _, _, plain_snaps = run("fused", box, friction, 1, snapshots=True, records=False)
+            ck.true(snaps == plain_snaps and one == plain and one_totals == plain_totals,
+                    "%s: with and without PendularLoop's records, the snapshots read inside the run, positions, velocities and totals are "
+                    "bit-identical" % tag)
             ck.true(one == ref, "%s: positions and velocities bit-identical to InteractionLoop (largest scaled difference %.3g)"
                     % (tag, scaled_difference(ref, one)))
             ck.true(one_totals == ref_totals, "%s: liquid totals identical %s vs %s" % (tag, one_totals, ref_totals))
@@ -90,7 +138,7 @@ for box in ("walls", "facets"):
                     "forces (%d, %d real)" % (tag, len(ref_fn), sum(1 for v in ref_fn.values() if v[0])))
             continue
         for threads in (1, 2):
-            state, totals, _, _ = run("fused", box, friction, threads)
+            state, totals, _, _, _ = run("fused", box, friction, threads)
             diff = scaled_difference(ref, state)
             print("%s: fused loop on %d thread(s): scaled difference %.3g from InteractionLoop on one" % (tag, threads, diff))
             ck.true(diff <= BOUND, "%s, %d threads: scaled difference %.3g <= %g" % (tag, threads, diff, BOUND))

@@ -1,0 +1,76 @@
+"""Keeps the interactions' Python objects current while PendularLoop computes from its own records
+(import inside yade only).
+
+Between steps PendularLoop keeps the state of sphere-sphere interactions without film or viscosity
+in a contiguous array of its own (PendularLoop.keepRecords) and writes it into the Interaction,
+ScGeom and PendularPhys objects only when something may read them. guard() wraps every Python path
+that reads or changes those objects so that it calls PendularLoop.sync first:
+
+* the attributes of the geometry and physics classes (reading: sync; assigning: sync and drop, so
+  that the loop reads the changed objects at its next step), Interaction.geom, .phys and .isActive
+  (assigning), Serializable.dict;
+* O.save and O.saveTmp, Law2_ScGeom_PendularPhys_Bridge.liquidTotals (reading);
+* YADE's utils functions written in C++ (yade._utils: getStress, setContactFriction, ...; sync and drop).
+
+O.bodies.erase/clear and O.interactions.erase/clear are wrapped in C++ (PendularCheck) and sync and
+drop there. Only after guard() does PendularLoop keep records (PendularLoop.readersGuarded).
+"""
+import functools
+import sys
+
+_guarded = False
+
+
+def _reading(fget, sync):
+    def get(self):
+        sync(False)
+        return fget(self)
+    return get
+
+
+def _writing(fset, sync):
+    def put(self, value):
+        sync(True)
+        fset(self, value)
+    return put
+
+
+def _calling(f, sync, drop):
+    @functools.wraps(f)
+    def call(*args, **kw):
+        sync(drop)
+        return f(*args, **kw)
+    call.__doc__ = (f.__doc__ or "") + "\n(yade-capillary: PendularLoop's records are written into the interactions first)"
+    return call
+
+
+def guard():
+    """Wrap the Python paths that read or change interactions (once per process), then let
+    PendularLoop keep records."""
+    global _guarded
+    if _guarded:
+        return
+    import yade._utils
+    import yade.wrapper as w
+
+    sync = w.PendularLoop.sync
+    for cls in (w.GenericSpheresContact, w.ScGeom, w.NormPhys, w.NormShearPhys, w.PendularPhys):
+        for name, p in list(vars(cls).items()):
+            if isinstance(p, property):
+                setattr(cls, name, property(_reading(p.fget, sync) if p.fget else None, _writing(p.fset, sync) if p.fset else None, None, p.__doc__))
+    for name in ("geom", "phys", "isActive"):
+        p = vars(w.Interaction)[name]
+        setattr(w.Interaction, name, property(p.fget, _writing(p.fset, sync) if p.fset else None, None, p.__doc__))
+    w.Serializable.dict = _calling(w.Serializable.dict, sync, False)
+    for name in ("save", "saveTmp"):
+        setattr(w.Omega, name, _calling(getattr(w.Omega, name), sync, False))
+    w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals = _calling(w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals, sync, False)
+    utils = sys.modules.get("yade.utils")
+    for name, f in list(vars(yade._utils).items()):
+        if type(f).__name__ == "function" and type(f).__module__ == "Boost.Python":
+            g = _calling(f, sync, True)
+            setattr(yade._utils, name, g)
+            if utils is not None and getattr(utils, name, None) is f:
+                setattr(utils, name, g)
+    _guarded = True
+    w.PendularLoop.readersGuarded()
