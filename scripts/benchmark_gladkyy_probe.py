@@ -1,5 +1,6 @@
 # Speed probe of a Gladkyy-size wet shear cell (about 170 000 flowing spheres, R = 2.381 mm, the
-# validation cell enlarged 2.2 times): 1000 timed steps with PendularLoop, and the projected wall
+# validation cell enlarged 2.2 times): 1000 timed steps with PendularLoop (with and without its records, in
+# interleaved chunks), and the projected wall
 # time of Gladkyy's 5 s of rotation at the configuration's time step (tc/20). A benchmark, not a
 # test. Run with the threads to project for, e.g.
 #   build/yade-capillary -j2 -n -x scripts/benchmark_gladkyy_probe.py [steps]
@@ -13,6 +14,10 @@ print("(d) Gladkyy-size cell: %d spheres (%d flowing), %d real of %d interaction
       % (r["spheres"], r["flowing"], r["real_interactions"], r["interactions"], r["threads"]))
 print("    %.3f s per step, %.3g particle-steps/s; %g s of rotation at dt = %.3g s: projected %.1f h"
       % (r["s_per_step"], r["particle_steps_per_s"], r["run_s"], r["dt"], r["projected_h"]))
+if "s_per_step_without_records" in r:
+    print("    without PendularLoop's records (keepRecords=False, chunks interleaved): %.3f s per step; with/without %.2f"
+          % (r["s_per_step_without_records"], r["s_per_step"] / r["s_per_step_without_records"]))
+    print("    PendularLoop, last step: %s" % ", ".join("%s %d" % kv for kv in r["counts"].items()))
 total = sum(r["engines_ns_per_step"].values())
 for name, ns in sorted(r["engines_ns_per_step"].items(), key=lambda kv: -kv[1]):
     print("    %-40s %8.1f ms per step (%4.1f %%)" % (name, ns / 1e6, 100 * ns / total))

@@ -10,6 +10,8 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <set>
 #include <typeinfo>
 
@@ -37,6 +39,17 @@ namespace {
 	// Below this many bodies, the per-body phases (gather, zeroing, force hand-over) run on one
 	// thread: starting a parallel region costs more than they do.
 	constexpr long parallelBodies = 20000;
+	// An epoch of the bound on the gaps of potential pairs (gather) ends when a body has moved this
+	// fraction of the smallest sphere radius from where it was at its start.
+	constexpr Real epochMove = 0.1;
+
+	// The largest float not above x: a lower bound that fits the 32-byte slot.
+	float roundedDown(Real x)
+	{
+		float f = float(x);
+		if (Real(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+		return f;
+	}
 
 	int threadNum()
 	{
@@ -150,6 +163,35 @@ void PendularLoop::gather(int threads)
 		}
 		if (p.kind == pendularSphere) near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
 	}
+	// The bound on the gaps of potential pairs. A pair checked at step s with gap g(s) stores
+	// g(s) - 2 D(s) (slot.gapBound); D is the largest distance of a body from its position at the start
+	// of the epoch, so either body moved at most D(s) + D(t) between s and t and g(t) >= g(s) - 2 D(s)
+	// - 2 D(t): the pair is still apart at step t if gapBound > 2 D(t). The epoch starts again (every
+	// potential pair checked) when a body has moved epochMove of the smallest radius, and when any
+	// body's radius, film reach, material kind or subdomain changed (Near.radius encodes them), so
+	// that the bound holds for the radii it was computed with. Films that reach beyond the surface
+	// (formation='films') change every step: no bound then.
+	bool restart = epoch.size() != n, films = false;
+	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
+	epoch.resize(n);
+	for (size_t id = 0; id < n; ++id) {
+		const Particle& p = particles[id];
+		if (p.kind != pendularSphere) {
+			restart = restart || epoch[id].radius != 0;
+			continue;
+		}
+		films   = films || p.reach != 0;
+		rmin    = math::min(rmin, p.radius);
+		restart = restart || epoch[id].radius != near[id].radius;
+		move2   = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
+	}
+	const Real move = math::sqrt(move2);
+	fullCheck       = restart || films || !(move < epochMove * rmin);
+	if (fullCheck) {
+		epoch             = near;
+		epochDisplacement = 0;
+	} else
+		epochDisplacement = math::max(epochDisplacement, move);
 }
 
 void PendularLoop::action()
@@ -190,7 +232,7 @@ void PendularLoop::action()
 	removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
-	long             fused = 0, dispatchedCount = 0, apart = 0, recorded = 0;
+	long             fused = 0, dispatchedCount = 0, apart = 0, recorded = 0, bounded = 0;
 	// The records belong to one scene, and only to the steps where nothing else reads the objects.
 	const bool recording = recordsAllowed(r);
 	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true);
@@ -204,7 +246,7 @@ void PendularLoop::action()
 	// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
 	// spread evenly over the container (one half per thread left one thread idle a third of the time).
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static, 1024) num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded)
+#pragma omp parallel for schedule(static, 1024) num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded)
 #endif
 	for (long i = 0; i < size; ++i) {
 		// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
@@ -213,24 +255,34 @@ void PendularLoop::action()
 			const Slot& ahead = slots[i + 2 * prefetchAhead];
 			const auto& J     = interactions[i + 2 * prefetchAhead];
 			if (ahead.same(J)) {
-				if (ahead.record >= 0) prefetchObject(&records[ahead.record]);
-				else if (!ahead.potential) prefetchObject(J.get());
+				if (ahead.recorded()) prefetchObject(&records[ahead.record]);
+				else if (!ahead.potential()) prefetchObject(J.get());
 			} else
 				prefetchObject(J.get());
 		}
 		if (i + prefetchAhead < size) {
 			const Slot& ahead = slots[i + prefetchAhead];
 			const auto& J     = interactions[i + prefetchAhead];
-			if (!ahead.potential && ahead.record < 0 && ahead.same(J)) {
-				if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
-				if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
+			if (ahead.same(J)) {
+				if (ahead.record == Slot::none) {
+					if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
+					if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
+				} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
+					prefetchObject(&particles[ahead.id1]);
+					prefetchObject(&particles[ahead.id2]);
+					const int t = threadNum();
+					__builtin_prefetch(&threadForce[t][ahead.id1], 1);
+					__builtin_prefetch(&threadForce[t][ahead.id2], 1);
+					__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
+					__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
+				}
 			}
 		}
 		const shared_ptr<Interaction>& I    = interactions[i];
 		Slot&                          slot = slots[i];
 		if (!slot.same(I)) {
 			// Another interaction than in the last step: new, or moved here by an erasure, with its record.
-			slot.record = -1;
+			slot.record = Slot::none;
 			if (!recordOf.empty()) {
 				const auto it = recordOf.find(I.get());
 				if (it != recordOf.end()) {
@@ -238,38 +290,48 @@ void PendularLoop::action()
 					slot.record      = it->second;
 					slot.id1         = records[it->second].id1;
 					slot.id2         = records[it->second].id2;
-					slot.potential   = false;
 				}
 			}
 		}
 		if (slot.same(I)) {
-			if (slot.record >= 0) {
-				Record& rec = records[slot.record];
-				if (particles[rec.id1].kind == pendularSphere && particles[rec.id2].kind == pendularSphere
-				    && particles[rec.id1].subdomain == scene->subdomain && particles[rec.id2].subdomain == scene->subdomain) {
+			if (slot.recorded()) {
+				Record&         rec = records[slot.record];
+				const Particle& p1  = particles[slot.id1]; // the record's bodies
+				const Particle& p2  = particles[slot.id2];
+				if (p1.kind == pendularSphere && p2.kind == pendularSphere && p1.subdomain == scene->subdomain && p2.subdomain == scene->subdomain) {
 					++fused;
 					++recorded;
 					if (!recordStep(rec, r, threadNum())) {
 						scene->interactions->requestErase(I);
 						toForget[threadNum()].push_back(slot.record);
-						slot.record    = -1;
-						slot.potential = true;
+						slot.record   = Slot::potentialPair;
+						slot.gapBound = -std::numeric_limits<float>::infinity();
 					}
 					continue;
 				}
 				// A body is gone or has changed (material, shape, subdomain): the objects decide again.
 				store(rec);
 				toForget[threadNum()].push_back(slot.record);
-				slot.record = -1;
-			} else if (skipApart && slot.potential) {
+				slot.record = Slot::none;
+			} else if (skipApart && slot.potential()) {
 				// A potential interaction of two PendularMat spheres seen in an earlier step (same
-				// object, so the same ids; it became real only in this loop, which updates the slot):
-				// one distance check on the gathered data, without reading the Interaction.
+				// object, so the same ids; it became real only in this loop, which updates the slot).
+				// Apart by more than the bodies can have moved since its last check: nothing to read
+				// but the slot (see gather).
+				if (!fullCheck && slot.gapBound > 2 * epochDisplacement) {
+					++fused;
+					++apart;
+					++bounded;
+					continue;
+				}
+				// Else one distance check on the gathered data, without reading the Interaction.
 				const Near& q1 = near[slot.id1];
 				const Near& q2 = near[slot.id2];
 				if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
 					const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
-					if ((q2.pos - q1.pos).squaredNorm() > sumR * sumR) {
+					const Real d2   = (q2.pos - q1.pos).squaredNorm();
+					if (d2 > sumR * sumR) {
+						slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * epochDisplacement);
 						++fused;
 						++apart;
 						continue;
@@ -283,13 +345,15 @@ void PendularLoop::action()
 		if (!slot.same(I)) slot.interaction = I;
 		slot.id1       = I->getId1();
 		slot.id2       = I->getId2();
-		slot.potential = !I->isReal();
-		if (recording && !slot.potential && recordable(*I, r)) toRecord[threadNum()].push_back(i);
+		slot.record    = I->isReal() ? Slot::none : Slot::potentialPair;
+		slot.gapBound  = -std::numeric_limits<float>::infinity();
+		if (recording && !slot.potential() && recordable(*I, r)) toRecord[threadNum()].push_back(i);
 	}
 	nFused        = fused;
 	nDispatched   = dispatchedCount;
 	nApart        = apart;
 	nRecorded     = recorded;
+	nBounded      = bounded;
 	settleRecords();
 	stale         = !recordOf.empty();
 	const auto t2 = Clock::now();
@@ -431,7 +495,7 @@ void PendularLoop::syncObjects(bool drop)
 	freeRecords.clear();
 	recordOf.clear();
 	for (auto& slot : slots)
-		slot.record = -1;
+		if (slot.recorded()) slot.record = Slot::none;
 }
 
 void PendularLoop::syncScene(Scene* scene, bool drop)

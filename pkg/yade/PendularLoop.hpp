@@ -6,6 +6,7 @@
 
 #include <boost/weak_ptr.hpp>
 #include <cstdint>
+#include <limits>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -30,7 +31,8 @@ public:
 	// contiguous array, so that a step reads and writes 5 cache lines per interaction instead of the
 	// Interaction, ScGeom and PendularPhys objects (about 12, scattered over the heap). The objects are
 	// brought up to date whenever something may read them (syncScene).
-	struct alignas(64) Record { // on cache-line boundaries: the first three lines change in a step, the last three are read only
+	struct alignas(64) Record { // on cache-line boundaries: the first three lines change in a step (but the ids), the last three are read only
+		Body::id_t id1, id2; // first: what the pass reads first
 		// ScGeom
 		Vector3r normal, contactPoint, shearInc;
 		Real     penetrationDepth, radius1, radius2;
@@ -43,7 +45,6 @@ public:
 		Real                          kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
 		bool                          wet, forceInContact;
 		bool                          isActive; // Interaction::isActive
-		Body::id_t                    id1, id2;
 		shared_ptr<Interaction>       interaction; // kept alive while recorded; read only when loaded, stored or reset
 	};
 
@@ -107,8 +108,14 @@ private:
 	struct Slot {
 		boost::weak_ptr<Interaction> interaction;
 		Body::id_t                   id1 = 0, id2 = 0;
-		int                          record    = -1; // index in records, or -1
-		bool                         potential = false;
+		// >= 0: index in records; none: a real interaction without record (or not yet seen); potentialPair.
+		int record = none;
+		// potentialPair: a lower bound of the surface gap minus 2 epochDisplacement at the start of the
+		// epoch [m] (see gather), -inf if unknown; rounded down to float to keep the slot at 32 B.
+		float                gapBound = -std::numeric_limits<float>::infinity();
+		static constexpr int none = -1, potentialPair = -2;
+		bool                 potential() const { return record == potentialPair; }
+		bool                 recorded() const { return record >= 0; }
 		bool same(const shared_ptr<Interaction>& I) const { return !interaction.owner_before(I) && !I.owner_before(interaction); }
 	};
 	std::vector<Slot>                  slots;
@@ -122,6 +129,11 @@ private:
 		Real     radius;
 	};
 	std::vector<Near>                  near;
+	// near at the start of the epoch of the bound on potential pairs' gaps, and the largest distance
+	// a body has moved since [m] (see gather); fullCheck: every potential pair is checked this step.
+	std::vector<Near>                  epoch;
+	Real                               epochDisplacement = 0;
+	bool                               fullCheck         = true;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	// The records, their free entries, and which interaction has which (for an interaction that an
 	// erasure moved to another entry of the container). Changed only between the passes.
@@ -151,6 +163,7 @@ public:
 		((long, nFused, 0, Attr::readonly, "Interactions handled by the fused sphere-sphere pass in the last step [-] (real and potential)."))
 		((long, nDispatched, 0, Attr::readonly, "Interactions handled through the dispatchers in the last step [-] (walls, facets, other materials)."))
 		((long, nApart, 0, Attr::readonly, "Of nFused, the potential interactions found apart by the distance check alone in the last step [-]."))
+		((long, nBounded, 0, Attr::readonly, "Of nApart, the potential interactions found apart by the bound on their gap alone in the last step [-], without reading the bodies (the bound: the gap at the last check minus how far the bodies can have moved since)."))
 		((long, nRecorded, 0, Attr::readonly, "Of nFused, the interactions computed from the loop's own records in the last step [-] (see keepRecords)."))
 		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps (the objects I.geom and I.phys are written when read: from Python, by O.save, by YADE's utils functions); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))
 		((Real, gatherTime, 0, , "Wall time spent gathering the bodies' positions and velocities since this was last set to 0 [ns]."))

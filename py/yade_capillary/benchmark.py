@@ -211,13 +211,16 @@ def engine_times(steps):
     return {"%s%s" % (e.__class__.__name__, "(%s)" % e.label if e.label else ""): e.execTime / steps for e in O.engines}
 
 
-def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0):
+def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=100):
     """Speed probe of a Gladkyy-size cell (shearcell.GLADKYY_SIZE: about 170 000 flowing spheres plus
     the rough walls), rotating. The flowing spheres are built touching (ring lattice of 2 R, filled
     to 1.2 H: about 166 000 flowing spheres), so that contacts and bridges exist from the first steps, as in a settled cell; 100 steps
-    untimed, then `steps` timed. Returns a dict: numbers of spheres and interactions, wall time per
-    step, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
-    step, and ns per step of each engine (where the time goes)."""
+    untimed, then `steps` timed, in chunks of `chunk` steps alternately with PendularLoop's records
+    and without (keepRecords), so that both are measured on the same cell at the same time.
+    Returns a dict: numbers of spheres and interactions, wall time per step with and without the
+    records, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
+    step with records, ns per step of each engine (where the time goes; both modes) and the
+    PendularLoop counts of the last step (real, recorded, apart, apart by the gap bound)."""
     from . import shearcell
 
     cfg = shearcell.GLADKYY_SIZE
@@ -228,12 +231,26 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0):
     O.timingEnabled = True
     for e in O.engines:
         e.execTime = 0
-    t0 = time.time()
-    O.run(steps, True)
-    wall = time.time() - t0
+    fused = next((e for e in O.engines if hasattr(e, "keepRecords")), None)
+    wall = {True: 0.0, False: 0.0}
+    done = {True: 0, False: 0}
+    records = True
+    while sum(done.values()) < steps:
+        n = min(chunk, steps - sum(done.values()))
+        if fused is not None:
+            fused.keepRecords = records
+        t0 = time.time()
+        O.run(n, True)
+        wall[records] += time.time() - t0
+        done[records] += n
+        records = not records if fused is not None else True
     O.timingEnabled = False
-    per_step = wall / steps
-    return {"spheres": len(O.bodies), "flowing": len(ids["flowing"]), "real_interactions": O.interactions.countReal(),
-            "interactions": len(O.interactions), "s_per_step": per_step, "particle_steps_per_s": len(ids["flowing"]) / per_step,
-            "projected_h": per_step * run_s / O.dt / 3600, "run_s": run_s, "dt": O.dt, "threads": O.numThreads,
-            "engines_ns_per_step": engine_times(steps)}
+    per_step = wall[True] / done[True]
+    out = {"spheres": len(O.bodies), "flowing": len(ids["flowing"]), "real_interactions": O.interactions.countReal(),
+           "interactions": len(O.interactions), "s_per_step": per_step, "particle_steps_per_s": len(ids["flowing"]) / per_step,
+           "projected_h": per_step * run_s / O.dt / 3600, "run_s": run_s, "dt": O.dt, "threads": O.numThreads,
+           "engines_ns_per_step": engine_times(steps)}
+    if fused is not None and done[False]:
+        out["s_per_step_without_records"] = wall[False] / done[False]
+        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nApart", "nBounded", "nDispatched")}
+    return out

@@ -6,7 +6,7 @@
 #   same order and sums the forces of a body in the same order: positions, velocities, normal
 #   forces and liquid totals must be bit-identical.
 #   A PyRunner reads every interaction's geometry and physics every 500 steps and, once, makes one
-#   bridge inactive from Python: PendularLoop keeps most interactions in its own records between
+#   bridge inactive and one sphere 30 % larger from Python: PendularLoop keeps most interactions in its own records between
 #   steps, so what Python reads and writes must go through them (yade_capillary.objects); the run
 #   with records must be bit-identical to the one without.
 # - yade -j2 (ctest runs this file with -j1 and with -j2), loops on one and on two threads: a
@@ -49,7 +49,7 @@ SNAPSHOT_EVERY = 500  # steps; a PyRunner reads every interaction mid-run (Pendu
 def snapshot():
     """Geometry and physics of every real interaction, read from Python inside the run (PyRunner),
     and, at the second snapshot, the first real sphere-sphere interaction made inactive from Python
-    (its forces must stop acting in both loops)."""
+    (its forces must stop acting in both loops) and the last wet sphere grown by 30 %."""
     rows = {}
     for i in O.interactions:
         g, p = i.geom, i.phys
@@ -60,6 +60,10 @@ def snapshot():
         pair = min(k for k, v in rows.items() if v[7] is not None and O.bodies[k[0]].shape.__class__.__name__ == "Sphere"
                    and O.bodies[k[1]].shape.__class__.__name__ == "Sphere")
         O.interactions[pair].isActive = False
+        # A sphere grows: potential pairs that PendularLoop found apart by the bound on their gap
+        # must be checked again at once (the bound holds for the radii it was computed with).
+        grow = max(b.id for b in O.bodies if b.dynamic and b.material.__class__.__name__ == "PendularMat")
+        O.bodies[grow].shape.radius *= 1.3
 
 
 SNAPSHOTS = []
@@ -118,6 +122,7 @@ for box in ("walls", "facets"):
             ck.true(loop.nFused > 0 and loop.nDispatched > 0, "%s: the fused pass (%d) and the dispatchers (%d, walls/facets) were both used"
                     % (tag, loop.nFused, loop.nDispatched))
             ck.true(loop.nRecorded > 0, "%s: %d interactions computed from PendularLoop's records in the last step" % (tag, loop.nRecorded))
+            ck.true(loop.nBounded > 0, "%s: %d potential pairs found apart by the bound on their gap in the last step" % (tag, loop.nBounded))
             ck.true([s[0] for s in snaps] == [s[0] for s in ref_snaps] and len(snaps) >= 3,
                     "%s: %d snapshots read by a PyRunner in both loops" % (tag, len(snaps)))
             # PendularLoop updates shearInc in contact only, where the law reads it (documented).
