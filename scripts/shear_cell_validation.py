@@ -3,7 +3,7 @@
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_validation.py CASE [CONFIG [PREPARATION]]
 #   CASE: dry | wet13.6nl | wet74.2nl, or Gladkyy's other models at 13.6 nl: wet13.6nl_weigert |
 #   wet13.6nl_willett_reduced | wet13.6nl_rabinovich_lambert   CONFIG: validation_2s (default) | validation_4s, validation_5s
-#   (continue validation_2s to 4 or 5 s of rotation) | validation (5 s from the prepared cell)
+#   (continue validation_2s to 4 or 5 s of rotation) | validation_10s (continue validation_5s to 10 s) | validation (5 s from the prepared cell)
 #   PREPARATION: dry (default: the dry cell given the liquid at the first step) | wet (a cell filled
 #   and settled with the liquid of CASE; results in results/shear_cell/CONFIG_wetprep/CASE)
 #   CASE = report: compare the analysed cases of CONFIG with Gladkyy 2014 (report.md, report.csv)

@@ -37,6 +37,9 @@ VALIDATION_2S = dict(VALIDATION, run_s=2.0, snapshots=10, snapshot_dt_s=0.1)
 # last 3.5 s of 5 s).
 VALIDATION_4S = dict(VALIDATION, run_s=2.0, snapshots=8, snapshot_dt_s=0.25)
 VALIDATION_5S = dict(VALIDATION, run_s=3.0, snapshots=12, snapshot_dt_s=0.25)
+# Continue a validation_5s run to 10 s of rotation (the run-length experiment of the cause analysis),
+# averaged over the last 3.5 s (6.5-10 s), Gladkyy's averaging window.
+VALIDATION_10S = dict(VALIDATION, run_s=5.0, snapshots=14, snapshot_dt_s=0.25)
 # Gladkyy's cell size: "nearly 200 000" spheres of R = 2.381 mm, about 168 000 flowing, i.e. the
 # validation cell (about 15 000 flowing) enlarged 2.2 times linearly; for speed probes.
 GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["Ri"], Rs=2.2 * VALIDATION["Rs"], H=2.2 * VALIDATION["H"])
@@ -44,9 +47,9 @@ GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["
 # the time-step experiment of the cause analysis, compared with the ci references (tc/20).
 CI_DT100 = dict(CI, dt_over_tc=0.01)
 CONFIGS = {"validation": VALIDATION, "ci_dt100": CI_DT100, "gladkyy_size": GLADKYY_SIZE, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
-           "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "ci": CI}
+           "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "validation_10s": VALIDATION_10S, "ci": CI}
 # Configurations that start from the final state of another one's run of the same case.
-CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s"}
+CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s", "validation_10s": "validation_5s"}
 # Keys that only control the run; all others describe the cell, its materials and its preparation.
 RUN_KEYS = ("run_s", "snapshots", "snapshot_dt_s")
 
