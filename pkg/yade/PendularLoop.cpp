@@ -9,6 +9,7 @@
 #include <core/Omega.hpp>
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -238,117 +239,141 @@ void PendularLoop::action()
 	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true);
 	recordScene = scene;
 	loopThread  = std::this_thread::get_id();
+	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
+		const auto ts = Clock::now();
+		sortInteractions();
+		sortTime += ns(ts, Clock::now());
+	}
+	sortPending = false;
 	slots.resize(size);
 	toRecord.resize(threads);
 	toForget.resize(threads);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
+	long       disorder  = 0;
 	// Static schedule: each thread gets the same interactions in every run, so a run with a given
 	// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
 	// spread evenly over the container (one half per thread left one thread idle a third of the time).
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static, 1024) num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded)
+#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder)
 #endif
-	for (long i = 0; i < size; ++i) {
-		// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
-		// cached, the geometry and physics of a real one that has no record.
-		if (i + 2 * prefetchAhead < size) {
-			const Slot& ahead = slots[i + 2 * prefetchAhead];
-			const auto& J     = interactions[i + 2 * prefetchAhead];
-			if (ahead.same(J)) {
-				if (ahead.recorded()) prefetchObject(&records[ahead.record]);
-				else if (!ahead.potential()) prefetchObject(J.get());
-			} else
-				prefetchObject(J.get());
-		}
-		if (i + prefetchAhead < size) {
-			const Slot& ahead = slots[i + prefetchAhead];
-			const auto& J     = interactions[i + prefetchAhead];
-			if (ahead.same(J)) {
-				if (ahead.record == Slot::none) {
-					if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
-					if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-				} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
-					prefetchObject(&particles[ahead.id1]);
-					prefetchObject(&particles[ahead.id2]);
-					const int t = threadNum();
-					__builtin_prefetch(&threadForce[t][ahead.id1], 1);
-					__builtin_prefetch(&threadForce[t][ahead.id2], 1);
-					__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
-					__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
+	{
+		// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
+		long     before    = -2;
+		uint64_t beforeKey = 0;
+#ifdef YADE_OPENMP
+#pragma omp for schedule(static, 1024)
+#endif
+		for (long i = 0; i < size; ++i) {
+			// One entry; after it, its slot holds its ids whichever way it went.
+			[&]() {
+				// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
+				// cached, the geometry and physics of a real one that has no record.
+				if (i + 2 * prefetchAhead < size) {
+					const Slot& ahead = slots[i + 2 * prefetchAhead];
+					const auto& J     = interactions[i + 2 * prefetchAhead];
+					if (ahead.same(J)) {
+						if (ahead.recorded()) prefetchObject(&records[ahead.record]);
+						else if (!ahead.potential()) prefetchObject(J.get());
+					} else
+						prefetchObject(J.get());
 				}
-			}
-		}
-		const shared_ptr<Interaction>& I    = interactions[i];
-		Slot&                          slot = slots[i];
-		if (!slot.same(I)) {
-			// Another interaction than in the last step: new, or moved here by an erasure, with its record.
-			slot.record = Slot::none;
-			if (!recordOf.empty()) {
-				const auto it = recordOf.find(I.get());
-				if (it != recordOf.end()) {
-					slot.interaction = I;
-					slot.record      = it->second;
-					slot.id1         = records[it->second].id1;
-					slot.id2         = records[it->second].id2;
+				if (i + prefetchAhead < size) {
+					const Slot& ahead = slots[i + prefetchAhead];
+					const auto& J     = interactions[i + prefetchAhead];
+					if (ahead.same(J)) {
+						if (ahead.record == Slot::none) {
+							if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
+							if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
+						} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
+							prefetchObject(&particles[ahead.id1]);
+							prefetchObject(&particles[ahead.id2]);
+							const int t = threadNum();
+							__builtin_prefetch(&threadForce[t][ahead.id1], 1);
+							__builtin_prefetch(&threadForce[t][ahead.id2], 1);
+							__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
+							__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
+						}
+					}
 				}
-			}
-		}
-		if (slot.same(I)) {
-			if (slot.recorded()) {
-				Record&         rec = records[slot.record];
-				const Particle& p1  = particles[slot.id1]; // the record's bodies
-				const Particle& p2  = particles[slot.id2];
-				if (p1.kind == pendularSphere && p2.kind == pendularSphere && p1.subdomain == scene->subdomain && p2.subdomain == scene->subdomain) {
-					++fused;
-					++recorded;
-					if (!recordStep(rec, r, threadNum())) {
-						scene->interactions->requestErase(I);
+				const shared_ptr<Interaction>& I    = interactions[i];
+				Slot&                          slot = slots[i];
+				if (!slot.same(I)) {
+					// Another interaction than in the last step: new, or moved here by an erasure, with its record.
+					slot.record = Slot::none;
+					if (!recordOf.empty()) {
+						const auto it = recordOf.find(I.get());
+						if (it != recordOf.end()) {
+							slot.interaction = I;
+							slot.record      = it->second;
+							slot.id1         = records[it->second].id1;
+							slot.id2         = records[it->second].id2;
+						}
+					}
+				}
+				if (slot.same(I)) {
+					if (slot.recorded()) {
+						Record&         rec = records[slot.record];
+						const Particle& p1  = particles[slot.id1]; // the record's bodies
+						const Particle& p2  = particles[slot.id2];
+						if (p1.kind == pendularSphere && p2.kind == pendularSphere && p1.subdomain == scene->subdomain && p2.subdomain == scene->subdomain) {
+							++fused;
+							++recorded;
+							if (!recordStep(rec, r, threadNum())) {
+								scene->interactions->requestErase(I);
+								toForget[threadNum()].push_back(slot.record);
+								slot.record   = Slot::potentialPair;
+								slot.gapBound = -std::numeric_limits<float>::infinity();
+							}
+							return;
+						}
+						// A body is gone or has changed (material, shape, subdomain): the objects decide again.
+						store(rec);
 						toForget[threadNum()].push_back(slot.record);
-						slot.record   = Slot::potentialPair;
-						slot.gapBound = -std::numeric_limits<float>::infinity();
-					}
-					continue;
-				}
-				// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-				store(rec);
-				toForget[threadNum()].push_back(slot.record);
-				slot.record = Slot::none;
-			} else if (skipApart && slot.potential()) {
-				// A potential interaction of two PendularMat spheres seen in an earlier step (same
-				// object, so the same ids; it became real only in this loop, which updates the slot).
-				// Apart by more than the bodies can have moved since its last check: nothing to read
-				// but the slot (see gather).
-				if (!fullCheck && slot.gapBound > 2 * epochDisplacement) {
-					++fused;
-					++apart;
-					++bounded;
-					continue;
-				}
-				// Else one distance check on the gathered data, without reading the Interaction.
-				const Near& q1 = near[slot.id1];
-				const Near& q2 = near[slot.id2];
-				if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
-					const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
-					const Real d2   = (q2.pos - q1.pos).squaredNorm();
-					if (d2 > sumR * sumR) {
-						slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * epochDisplacement);
-						++fused;
-						++apart;
-						continue;
+						slot.record = Slot::none;
+					} else if (skipApart && slot.potential()) {
+						// A potential interaction of two PendularMat spheres seen in an earlier step (same
+						// object, so the same ids; it became real only in this loop, which updates the slot).
+						// Apart by more than the bodies can have moved since its last check: nothing to read
+						// but the slot (see gather).
+						if (!fullCheck && slot.gapBound > 2 * epochDisplacement) {
+							++fused;
+							++apart;
+							++bounded;
+							return;
+						}
+						// Else one distance check on the gathered data, without reading the Interaction.
+						const Near& q1 = near[slot.id1];
+						const Near& q2 = near[slot.id2];
+						if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
+							const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
+							const Real d2   = (q2.pos - q1.pos).squaredNorm();
+							if (d2 > sumR * sumR) {
+								slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * epochDisplacement);
+								++fused;
+								++apart;
+								return;
+							}
+						}
 					}
 				}
-			}
+				step(I, r, fused, dispatchedCount);
+				// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the
+				// control block, one more cache line per interaction and step.
+				if (!slot.same(I)) slot.interaction = I;
+				slot.id1       = I->getId1();
+				slot.id2       = I->getId2();
+				slot.record    = I->isReal() ? Slot::none : Slot::potentialPair;
+				slot.gapBound  = -std::numeric_limits<float>::infinity();
+				if (recording && !slot.potential() && recordable(*I, r)) toRecord[threadNum()].push_back(i);
+			}();
+			const uint64_t key = slots[i].key();
+			if (i == before + 1 && key < beforeKey) ++disorder;
+			before    = i;
+			beforeKey = key;
 		}
-		step(I, r, fused, dispatchedCount);
-		// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the
-		// control block, one more cache line per interaction and step.
-		if (!slot.same(I)) slot.interaction = I;
-		slot.id1       = I->getId1();
-		slot.id2       = I->getId2();
-		slot.record    = I->isReal() ? Slot::none : Slot::potentialPair;
-		slot.gapBound  = -std::numeric_limits<float>::infinity();
-		if (recording && !slot.potential() && recordable(*I, r)) toRecord[threadNum()].push_back(i);
 	}
+	nDisorder     = disorder;
+	sortPending   = sortDisorder > 0 && Real(disorder) > sortDisorder * Real(size);
 	nFused        = fused;
 	nDispatched   = dispatchedCount;
 	nApart        = apart;
@@ -368,7 +393,14 @@ void PendularLoop::action()
 // attributes, which write the records into the objects first).
 bool PendularLoop::recordsAllowed(const Resolved& r) const
 {
-	if (!keepRecords || !readersGuarded || !r.fused || scene->isPeriodic || !callbacks.empty()) return false;
+	return keepRecords && readersGuarded && r.fused && !scene->isPeriodic && ownsStep(r);
+}
+
+// The step has no other reader of the interactions than the known engines (see recordsAllowed), no
+// interaction callbacks and no other MPI rank (yade.mpy keeps its own lists of interactions).
+bool PendularLoop::ownsStep(const Resolved&) const
+{
+	if (!callbacks.empty()) return false;
 	int initialized = 0, finalized = 0, ranks = 1;
 	MPI_Initialized(&initialized);
 	MPI_Finalized(&finalized);
@@ -482,6 +514,67 @@ void PendularLoop::settleRecords()
 		}
 		list.clear();
 	}
+}
+
+// Sorts YADE's interaction container by (id1, id2), with the slots, and the records in the new
+// order. The collider appends new interactions and an erasure moves the last entry into the hole,
+// so the container drifts out of any order and the pass reads the bodies, slots and records of
+// consecutive entries from scattered places; body ids of a packing built layer by layer are close
+// in space, so in id order a pair's bodies and those of its neighbours in the container share cache
+// lines and the records are read in their order in memory. The container's order is only the order
+// of the loop (and of the force sums); InteractionContainer finds an interaction through its bodies,
+// and linIx is its back-reference.
+void PendularLoop::sortInteractions()
+{
+	auto&        container = *scene->interactions;
+	const size_t n         = container.size();
+	slots.resize(n);
+	std::vector<std::pair<uint64_t, size_t>> order(n); // key, entry before the sort
+	for (size_t i = 0; i < n; ++i) {
+		const auto& I = container[i];
+		if (!slots[i].same(I)) { // new since the last pass, or moved here by an erasure with its record
+			slots[i]             = Slot {};
+			slots[i].interaction = I;
+			slots[i].id1         = I->getId1();
+			slots[i].id2         = I->getId2();
+			const auto it        = recordOf.find(I.get());
+			if (it != recordOf.end()) slots[i].record = it->second; // else the pass decides
+		}
+		order[i] = { slots[i].key(), i };
+	}
+	std::sort(order.begin(), order.end());
+	std::vector<shared_ptr<Interaction>> sorted(n);
+	std::vector<Slot>                    sortedSlots(n);
+	for (size_t k = 0; k < n; ++k) {
+		sorted[k]      = std::move(container[order[k].second]);
+		sortedSlots[k] = std::move(slots[order[k].second]);
+	}
+	for (size_t k = 0; k < n; ++k) {
+		container[k]        = std::move(sorted[k]);
+		container[k]->linIx = int(k);
+	}
+	slots.swap(sortedSlots);
+	++nSorts;
+	if (records.empty()) return;
+	std::vector<Record> ordered;
+	ordered.reserve(recordOf.size());
+	std::vector<bool> placed(records.size(), false);
+	for (size_t k = 0; k < n; ++k) {
+		Slot& slot = slots[k];
+		if (!slot.recorded()) continue;
+		placed[slot.record] = true;
+		ordered.push_back(std::move(records[slot.record]));
+		slot.record = int(ordered.size()) - 1;
+	}
+	// A record whose interaction is no longer in the container (none should be: the collider erases
+	// only potential interactions, Python erasures drop the records first) goes back to its objects.
+	for (const auto& entry : recordOf)
+		if (!placed[entry.second]) store(records[entry.second]);
+	recordOf.clear();
+	for (size_t k = 0; k < ordered.size(); ++k)
+		recordOf[ordered[k].interaction.get()] = int(k);
+	records.swap(ordered);
+	freeRecords.clear();
 }
 
 void PendularLoop::syncObjects(bool drop)

@@ -99,6 +99,8 @@ private:
 	void syncObjects(bool drop);
 	void settleRecords();
 	bool recordsAllowed(const Resolved& r) const;
+	bool ownsStep(const Resolved& r) const;
+	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
 	void flushForces(int threads);
 
@@ -117,6 +119,8 @@ private:
 		bool                 potential() const { return record == potentialPair; }
 		bool                 recorded() const { return record >= 0; }
 		bool same(const shared_ptr<Interaction>& I) const { return !interaction.owner_before(I) && !I.owner_before(interaction); }
+		// The order of sortInteractions: by id1, then id2 (ids are >= 0).
+		uint64_t key() const { return (uint64_t(uint32_t(id1)) << 32) | uint32_t(id2); }
 	};
 	std::vector<Slot>                  slots;
 	bool                               removeUnseen = false;
@@ -165,6 +169,11 @@ public:
 		((long, nApart, 0, Attr::readonly, "Of nFused, the potential interactions found apart by the distance check alone in the last step [-]."))
 		((long, nBounded, 0, Attr::readonly, "Of nApart, the potential interactions found apart by the bound on their gap alone in the last step [-], without reading the bodies (the bound: the gap at the last check minus how far the bodies can have moved since)."))
 		((long, nRecorded, 0, Attr::readonly, "Of nFused, the interactions computed from the loop's own records in the last step [-] (see keepRecords)."))
+		((Real, sortDisorder, 0.1, , "Fraction of the interaction container's entries out of (id1, id2) order in a step [-] above which the loop sorts YADE's interaction container by (id1, id2) before its next pass, so that consecutive interactions read nearby bodies and records (the collider appends new interactions at the end, erasures move the last entry into the hole); 0: never. Only with engines known not to depend on the container's order (as for keepRecords), without callbacks and MPI. The order of the container is the order in which the forces on a body are summed: runs with and without sorting differ by round-off."))
+		((long, nDisorder, 0, Attr::readonly, "Entries of the interaction container found after an entry with larger (id1, id2) in the last step [-] (see sortDisorder)."))
+		((long, nSorts, 0, Attr::readonly, "How many times the loop has sorted the interaction container [-] (see sortDisorder)."))
+		((bool, sortPending, false, Attr::hidden, "The last pass found more than sortDisorder of the container out of order: sort before the next one (saved, so that a run continued from O.save sorts where the original run does)."))
+		((Real, sortTime, 0, , "Wall time spent sorting the interaction container since this was last set to 0 [ns] (part of passTime)."))
 		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps (the objects I.geom and I.phys are written when read: from Python, by O.save, by YADE's utils functions); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))
 		((Real, gatherTime, 0, , "Wall time spent gathering the bodies' positions and velocities since this was last set to 0 [ns]."))
 		((Real, passTime, 0, , "Wall time spent in the pass over the interactions since this was last set to 0 [ns]."))

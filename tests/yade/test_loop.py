@@ -15,6 +15,10 @@
 #   grows over 2000 steps of collisions to at most 2.4e-12 of the scale (measured; the standard
 #   loop on two threads differs from itself on one as much). Bound: 1e-9 of the scale. Bridge
 #   counts must be equal and liquid volumes equal to 1e-12 relative.
+# - Sorting the interaction container (PendularLoop.sortDisorder; here whenever one entry is out of
+#   order, also in the runs on two threads) changes only the order of the force sums: the same bound,
+#   bit-identical with and without records; after it, erasing interactions from Python (through
+#   their place in the container, linIx) erases exactly those.
 import math
 
 from yade import O
@@ -69,7 +73,7 @@ def snapshot():
 SNAPSHOTS = []
 
 
-def run(loop, box, friction, threads, snapshots=False, records=True):
+def run(loop, box, friction, threads, snapshots=False, records=True, sort=0.0):
     stress.box_packing(400, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.7, speed=0.1, friction=friction)
     if box == "walls":
         dry_neighbours()
@@ -82,6 +86,7 @@ def run(loop, box, friction, threads, snapshots=False, records=True):
     engine.ompThreads = threads
     if loop == "fused":
         engine.keepRecords = records
+        engine.sortDisorder = sort
     if snapshots:
         from yade.wrapper import PyRunner
         del SNAPSHOTS[:]
@@ -92,6 +97,16 @@ def run(loop, box, friction, threads, snapshots=False, records=True):
     fn = {(i.id1, i.id2): (i.isReal, i.iterMadeReal, type(i.phys).__name__, tuple(i.phys.normalForce) if i.isReal else None)
           for i in O.interactions.all(False)}
     return state, (law.nBridges, law.liquidVolume, law.liquidFormed, law.liquidReleased), fn, engine, list(SNAPSHOTS) if snapshots else None
+
+
+def container_consistent():
+    """YADE's InteractionContainer keeps each interaction in its linear array and in both bodies' maps;
+    the collider erases through the array place stored in the interaction (linIx), which a sort of
+    the array must keep equal to the place: a wrong one moves or drops another interaction. True if
+    the array holds each pair once and exactly the pairs of the bodies' maps."""
+    listed = [(min(i.id1, i.id2), max(i.id1, i.id2)) for i in O.interactions.all(False)]
+    mapped = {(min(i.id1, i.id2), max(i.id1, i.id2)) for b in O.bodies if b is not None for i in O.interactions.withBodyAll(b.id)}
+    return len(listed) == len(set(listed)) and set(listed) == mapped
 
 
 def without_separated_shear_inc(rows):
@@ -134,6 +149,18 @@ for box in ("walls", "facets"):
             ck.true(snaps == plain_snaps and one == plain and one_totals == plain_totals,
                     "%s: with and without PendularLoop's records, the snapshots read inside the run, positions, velocities and totals are "
                     "bit-identical" % tag)
+            # Sorting the container (sortDisorder; here whenever an entry is out of order) changes the
+            # order of the force sums only: round-off, bounded as for two threads below.
+            ordered, ordered_totals, _, sorter, ordered_snaps = run("fused", box, friction, 1, snapshots=True, sort=1e-9)
+            consistent = container_consistent()
+            ck.true(sorter.nSorts > 10 and consistent, "%s: PendularLoop sorted the interaction container %d times; after 2000 steps of "
+                    "the collider's insertions and erasures it holds each interaction once, as the bodies do" % (tag, sorter.nSorts))
+            ordered_plain, ordered_plain_totals, _, _, _ = run("fused", box, friction, 1, snapshots=True, records=False, sort=1e-9)
+            ck.true(ordered == ordered_plain and ordered_totals == ordered_plain_totals,
+                    "%s: sorted, with and without records: positions, velocities and totals bit-identical" % tag)
+            diff = scaled_difference(ref, ordered)
+            ck.true(diff <= BOUND and len(ordered_snaps) == len(ref_snaps),
+                    "%s: sorted container: scaled difference %.3g <= %g from InteractionLoop after %d steps" % (tag, diff, BOUND, STEPS))
             ck.true(one == ref, "%s: positions and velocities bit-identical to InteractionLoop (largest scaled difference %.3g)"
                     % (tag, scaled_difference(ref, one)))
             ck.true(one_totals == ref_totals, "%s: liquid totals identical %s vs %s" % (tag, one_totals, ref_totals))
@@ -143,7 +170,7 @@ for box in ("walls", "facets"):
                     "forces (%d, %d real)" % (tag, len(ref_fn), sum(1 for v in ref_fn.values() if v[0])))
             continue
         for threads in (1, 2):
-            state, totals, _, _, _ = run("fused", box, friction, threads)
+            state, totals, _, _, _ = run("fused", box, friction, threads, sort=1e-9)
             diff = scaled_difference(ref, state)
             print("%s: fused loop on %d thread(s): scaled difference %.3g from InteractionLoop on one" % (tag, threads, diff))
             ck.true(diff <= BOUND, "%s, %d threads: scaled difference %.3g <= %g" % (tag, threads, diff, BOUND))
