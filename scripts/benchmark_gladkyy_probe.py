@@ -17,7 +17,7 @@ print("    %.3f s per step, %.3g particle-steps/s; %g s of rotation at dt = %.3g
 if "s_per_step_without_records" in r:
     print("    without PendularLoop's records (keepRecords=False, chunks interleaved): %.3f s per step; with/without %.2f"
           % (r["s_per_step_without_records"], r["s_per_step"] / r["s_per_step_without_records"]))
-    print("    PendularLoop, last step: %s" % ", ".join("%s %d" % kv for kv in r["counts"].items()))
+    print("    PendularLoop, last step: %s; sorting the container %.2f ms per step" % (", ".join("%s %d" % kv for kv in r["counts"].items()), r["sort_ms_per_step"]))
 total = sum(r["engines_ns_per_step"].values())
 for name, ns in sorted(r["engines_ns_per_step"].items(), key=lambda kv: -kv[1]):
     print("    %-40s %8.1f ms per step (%4.1f %%)" % (name, ns / 1e6, 100 * ns / total))

@@ -2,7 +2,8 @@
 # law (the baseline), its zero-force variant, our Law2 in YADE's InteractionLoop and our
 # PendularLoop (frictionless, with friction, and frictionless with a viscous liquid, eta = 1 mPa s, with
 # and without the dynamic rupture rule, with the liquid on the particles, liquid="film", and without its records), same model, in one run;
-# then PendularLoop with and without its records on a 40^3 packing. Prints ns per
+# then PendularLoop with records and sorting, with records without sorting, and with neither on a
+# 40^3 packing. Prints ns per
 # bridge-step of the interaction loop, ratios to the baseline, PendularLoop's phases and the
 # bytes per bridge. A benchmark, not a test: timings on shared machines are noisy.
 # Run:  build/yade-capillary -j1 -n -x scripts/benchmark_packing.py [n] [steps]
@@ -25,10 +26,11 @@ for r in results:
     if "pass" in r:
         print("  %s: gather %.1f + pass %.1f + forces %.1f ns per bridge-step" % (r["law"], r["gather"], r["pass"], r["flush"]))
 big = benchmark.records_effect()
-print("PendularLoop's records on a packing too large for the caches (40^3 spheres, %d bridges, 200 steps):" % big[0]["interactions"])
+print("PendularLoop's records and sorting on a packing too large for the caches (40^3 spheres, %d bridges, 200 steps):" % big[0]["interactions"])
 for r in big:
-    print("  %-70s %8.1f ns/bridge-step (pass %.1f) %10.3g particle-steps/s" % (r["law"], r["ns_per_bridge_step"], r["pass"], r["particle_steps_per_s"]))
-print("  with/without records: %.2f" % (big[0]["ns_per_bridge_step"] / big[1]["ns_per_bridge_step"]))
+    print("  %-85s %8.1f ns/bridge-step (pass %.1f) %10.3g particle-steps/s" % (r["law"], r["ns_per_bridge_step"], r["pass"], r["particle_steps_per_s"]))
+print("  records and sorting / records without sorting / neither: 1 / %.2f / %.2f"
+      % (big[1]["ns_per_bridge_step"] / big[0]["ns_per_bridge_step"], big[2]["ns_per_bridge_step"] / big[0]["ns_per_bridge_step"]))
 mem = benchmark.memory()
 ours, theirs = mem["ScGeom"] + mem["PendularPhys"] + mem["slot"] + mem["record"], mem["ScGeom"] + mem["ViscElCapPhys"]
 print("(c) bytes per bridge (sizeof; plus the Interaction, %d B, and shared_ptr control blocks, the same for both laws):" % mem["Interaction"])

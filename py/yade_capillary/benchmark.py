@@ -43,14 +43,16 @@ def build(material, n, seed, vel, film=0.0):
     O.dt = TC / 50
 
 
-def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, records=True):
+def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, records=True, sort=True):
     """Run `steps` steps; return dict with ns per interaction-step of the interaction loop (and,
     for PendularLoop, its phases: gathering the bodies, the pass, the force hand-over).
-    records: PendularLoop.keepRecords."""
+    records: PendularLoop.keepRecords; sort: False sets PendularLoop.sortDisorder to 0."""
     build(material, n, seed, vel, film)
     O.engines = engines(loop=loop)
     if hasattr(O.engines[2], "keepRecords"):
         O.engines[2].keepRecords = records
+        if not sort:
+            O.engines[2].sortDisorder = 0
     O.step()  # first step: collider and interaction creation, not timed
     O.timingEnabled = True
     for e in O.engines:
@@ -84,23 +86,26 @@ def builtin_run(capillar_type, n, steps, seed, vel):
                                    [Law2_ScGeom_ViscElCapPhys_Basic()]), n, steps, seed, vel)
 
 
-def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett", liquid="fixed", records=True):
+def ours_run(model, loop, friction, n, steps, seed, vel, eta=0.0, rupture="willett", liquid="fixed", records=True, sort=True):
     """Our law on the benchmark scene, in `loop` ("standard": YADE's InteractionLoop, "fused":
     PendularLoop); friction: contact friction angle [rad] (0: no tangential spring); eta: liquid
     viscosity [Pa s] (0: no viscous term); rupture: rupture rule (e.g. "willett+pitois"); liquid:
     "fixed" (Vb per bridge) or "film" (every sphere carries FILM, bridges of about Vb from the films,
     formed by PendularCheck at the end of the step, returned to the films at rupture); records:
-    PendularLoop.keepRecords (False: the loop reads and writes YADE's objects at every step)."""
+    PendularLoop.keepRecords (False: the loop reads and writes YADE's objects at every step); sort:
+    PendularLoop sorts the interaction container (False: sortDisorder = 0)."""
     label = "yade-capillary %s, %s, friction %g" % (model, "PendularLoop" if loop == "fused" else "Law2 in InteractionLoop", friction)
     if loop == "fused" and not records:
         label += ", without records"
+    if loop == "fused" and not sort:
+        label += ", without sorting"
     if eta > 0:
         label += ", eta %g Pa s%s" % (eta, ", rupture %s" % rupture if rupture != "willett" else "")
     if liquid == "film":
         label += ", liquid on the particles (film)"
     return measure(label, PendularMat(tc=TC, en=EN, et=EN, density=RHO, frictionAngle=friction, wet=True, Vb=VB if liquid == "fixed" else 1e-6,
                                       gamma=GAMMA, theta=0, model=model, eta=eta, rupture=rupture, liquid=liquid),
-                   loop, n, steps, seed, vel, film=FILM if liquid == "film" else 0.0, records=records)
+                   loop, n, steps, seed, vel, film=FILM if liquid == "film" else 0.0, records=records, sort=sort)
 
 
 def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_model="Willett_numeric", repeats=3):
@@ -134,13 +139,14 @@ def packing(n=16, steps=1000, seed=1, vel=0.005, model="willett_full", builtin_m
 
 
 def records_effect(n=40, steps=200, seed=1, vel=0.005, model="willett_full", repeats=2):
-    """PendularLoop frictionless with and without its records on a packing too large for the caches
-    (n = 40: 64 000 spheres, about 169 000 bridges), interleaved `repeats` times; returns the
-    fastest of each, with records first."""
-    runs = [[], []]
+    """PendularLoop frictionless with records and sorting (the defaults), without sorting, and without
+    either, on a packing too large for the caches (n = 40: 64 000 spheres, about 169 000 bridges),
+    interleaved `repeats` times; returns the fastest of each, in that order."""
+    variants = ((True, True), (True, False), (False, False))
+    runs = [[] for _ in variants]
     for _ in range(repeats):
-        for r, records in zip(runs, (True, False)):
-            r.append(ours_run(model, "fused", 0.0, n, steps, seed, vel, records=records))
+        for r, (records, sort) in zip(runs, variants):
+            r.append(ours_run(model, "fused", 0.0, n, steps, seed, vel, records=records, sort=sort))
     return [min(r, key=lambda x: x["ns_per_bridge_step"]) for r in runs]
 
 
@@ -220,7 +226,8 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     Returns a dict: numbers of spheres and interactions, wall time per step with and without the
     records, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
     step with records, ns per step of each engine (where the time goes; both modes) and the
-    PendularLoop counts of the last step (real, recorded, apart, apart by the gap bound)."""
+    PendularLoop counts of the last step (real, recorded, apart, apart by the gap bound, out of order,
+    sorts so far) and the time spent sorting the interaction container per step."""
     from . import shearcell
 
     cfg = shearcell.GLADKYY_SIZE
@@ -252,5 +259,6 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
            "engines_ns_per_step": engine_times(steps)}
     if fused is not None and done[False]:
         out["s_per_step_without_records"] = wall[False] / done[False]
-        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nApart", "nBounded", "nDispatched")}
+        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nApart", "nBounded", "nDispatched", "nDisorder", "nSorts")}
+        out["sort_ms_per_step"] = fused.sortTime / 1e6 / (steps + 100)
     return out

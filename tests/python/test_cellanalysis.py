@@ -50,3 +50,22 @@ def test_outputs_and_conventions(rundir):
     for key in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "conventions"):
         assert key in out
     assert "compression positive" in out["conventions"]["stress"]
+
+
+def test_gap_classes(tmp_path):
+    # Bins of 1 um centred at a = -1.5, -0.5, 0.5, 1.5, 2.5, 3.5 um (a_crit = 3.5 um) and one at 0
+    # straddling a = 0 (centres need not be regular at 0 in this synthetic table; half a bin = the
+    # median spacing / 2 = 0.5 um): contact (2 bins), straddling (1), short (centre <= 1.75: 2), long
+    # (2); the densities are chosen so that each ratio is known.
+    rows = [(-1.5e-6, 3, 1.0, 10, 1.0, 10), (-0.5e-6, 1, 1.0, 10, 1.0, 10), (0.0, 7, 1.0, 1, 1.0, 1), (0.5e-6, 2, 1.0, 5, 1.0, 5),
+            (1.5e-6, 2, 1.0, 5, 1.0, 5), (2.5e-6, 1, 1.0, 6, 1.0, 3), (3.5e-6, 1, 1.0, 6, 1.0, 3)]
+    path = tmp_path / "contacts_vs_a.csv"
+    np.savetxt(path, np.array(rows), delimiter=",",
+               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
+    g = cellanalysis.gap_classes(str(path))
+    assert g["a_crit_m"] == pytest.approx(3.5e-6)
+    assert (g["contact_per_snapshot"], g["straddling_per_snapshot"], g["short_per_snapshot"], g["long_per_snapshot"]) == (4, 7, 4, 2)
+    assert g["short_share"] == pytest.approx(4 / 6)
+    assert g["contact_band_over_outside"] == pytest.approx(1.0)
+    assert g["short_band_over_outside"] == pytest.approx(1.0)
+    assert g["long_band_over_outside"] == pytest.approx(2.0)
