@@ -1,17 +1,20 @@
 # Contacts against the surface separation a in the shear band and outside it (Gladkyy 2014 section
 # 4.2, Fig. 9-10), from the contacts_vs_a.csv of analysed runs: per run, a_crit, the contacts per
 # snapshot in contact / in the bin at a = 0 / short bridges (a <= a_crit/2) / long bridges, the share of short bridges and
-# the band-over-outside density ratio of each class. Prints a markdown table.
+# the band-over-outside density ratio of each class, and the mean force of the separated bins over the
+# model's two-sphere force at those gaps (Fig. 9, bottom row). Prints a markdown table.
 # Run:  PYTHONPATH=build/python /usr/bin/python3 scripts/contacts_report.py [RUNDIR ...]   (default: data/shear_cell_runs/*/*)
 import glob
+import json
 import os
 import sys
 
-from yade_capillary import cellanalysis
+from yade_capillary import cellanalysis, shearcell
 
 dirs = sys.argv[1:] or sorted(os.path.dirname(p) for p in glob.glob("data/shear_cell_runs/*/*/contacts_vs_a.csv"))
-print("| run | a_crit [mm] | in contact | bin at a = 0 | short bridges | long bridges | short share | band/outside: contact, short, long |")
-print("|---|---|---|---|---|---|---|---|")
+print("| run | a_crit [mm] | in contact | bin at a = 0 | short bridges | long bridges | short share | band/outside: contact, short, long "
+      "| mean force / model, separated bins: median, weighted |")
+print("|---|---|---|---|---|---|---|---|---|")
 for d in dirs:
     try:
         g = cellanalysis.gap_classes(os.path.join(d, "contacts_vs_a.csv"))
@@ -21,4 +24,13 @@ for d in dirs:
     print("| %s | %.3f | %.0f | %.0f | %.0f | %.0f | %.2f | %.2f, %.2f, %.2f |" % (
         os.path.relpath(d, "data/shear_cell_runs") if d.startswith("data/") else d, g["a_crit_m"] * 1e3, g["contact_per_snapshot"],
         g["straddling_per_snapshot"], g["short_per_snapshot"], g["long_per_snapshot"], g["short_share"], g["contact_band_over_outside"],
-        g["short_band_over_outside"], g["long_band_over_outside"]))
+        g["short_band_over_outside"], g["long_band_over_outside"]), end="")
+    with open(os.path.join(d, "run.json")) as f:
+        run = json.load(f)
+    liquid = shearcell.ALL_CASES[run["case"]]
+    if liquid["wet"]:
+        fm = cellanalysis.force_against_model(os.path.join(d, "contacts_vs_a.csv"), liquid["model"], run["cfg"]["R"], liquid["Vb"], liquid["gamma"],
+                                              liquid["theta"])
+        print(" %.4f, %.4f (%d bins) |" % (fm["median"], fm["weighted_mean"], fm["bins"]))
+    else:
+        print(" |")

@@ -307,6 +307,25 @@ def gap_classes(csv_path):
     return out
 
 
+def force_against_model(csv_path, model, R, volume, gamma, theta=0.0):
+    """Gladkyy 2014 Fig. 9 (bottom row): the mean force per separation bin of a run's contacts_vs_a.csv
+    against the model's force between two spheres of radius R [m] at those separations (averaged
+    over each bin), for the bins entirely at a > 0, where a contact is a bridge alone. Returns the
+    ratios' median, their mean weighted by the contacts of each bin, and the number of bins."""
+    from . import kernels
+
+    A = np.genfromtxt(csv_path, delimiter=",", names=True)
+    a, force, n = np.atleast_1d(A["a_m"]), np.atleast_1d(A["mean_force_N"]), np.atleast_1d(A["contacts_per_snapshot"])
+    half = float(np.median(np.diff(a))) / 2 if len(a) > 1 else 0.0
+    m = (a - half > 0) & (n > 0)
+    if not m.any():
+        return {"median": float("nan"), "weighted_mean": float("nan"), "bins": 0}
+    expected = np.array([np.mean(kernels.force(model, np.linspace(x - half, x + half, 21), R1=R, R2=R, volume=volume, gamma=gamma, theta=theta))
+                         for x in a[m]])
+    ratio = force[m] / expected
+    return {"median": float(np.median(ratio)), "weighted_mean": float(np.average(ratio, weights=n[m])), "bins": int(m.sum())}
+
+
 def contact_numbers(data):
     """Mechanical contacts (overlap, gap <= 0) and separated bridges (gap > 0) per flowing sphere,
     averaged over the snapshots (Gladkyy 2014 section 4.2: about 20 % more mechanical contacts wet

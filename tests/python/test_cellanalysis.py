@@ -69,3 +69,24 @@ def test_gap_classes(tmp_path):
     assert g["contact_band_over_outside"] == pytest.approx(1.0)
     assert g["short_band_over_outside"] == pytest.approx(1.0)
     assert g["long_band_over_outside"] == pytest.approx(2.0)
+
+
+def test_force_against_model(tmp_path):
+    # A table whose separated bins (9 of 2e-5 m, the bin centred at 0 straddles a = 0) hold exactly the
+    # model's bin-averaged force, one bin doubled: the median ratio is 1, the mean weighted by the
+    # contacts (one per bin) is 10/9.
+    from yade_capillary import kernels
+    R, V, gamma = 2.381e-3, 13.6e-12, 20.6e-3
+    centres = np.arange(-1, 10) * 2e-5
+    half = 1e-5
+    rows = []
+    for k, x in enumerate(centres):
+        f = np.mean(kernels.force("willett_full", np.linspace(x - half, x + half, 21), R1=R, R2=R, volume=V, gamma=gamma, theta=0.0)) if x > half else 1.0
+        rows.append((x, 1.0, f * (2.0 if k == 5 else 1.0), 0, 0, 0))
+    path = tmp_path / "contacts_vs_a.csv"
+    np.savetxt(path, np.array(rows), delimiter=",",
+               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
+    fm = cellanalysis.force_against_model(str(path), "willett_full", R, V, gamma)
+    assert fm["bins"] == 9
+    assert fm["median"] == pytest.approx(1.0, rel=1e-12)
+    assert fm["weighted_mean"] == pytest.approx(10 / 9, rel=1e-12)
