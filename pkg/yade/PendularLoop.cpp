@@ -123,47 +123,6 @@ void PendularLoop::gather(int threads)
 	near.resize(n);
 	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
 	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
-#ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies)
-#endif
-	for (size_t id = 0; id < n; ++id) {
-		// Two levels: the Body, then, once it is cached, its State and Shape.
-		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
-		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
-			const Body& ahead = *bodies[id + prefetchAhead];
-			prefetchObject(ahead.state.get());
-			__builtin_prefetch(ahead.shape.get());
-		}
-		Particle&   p = particles[id];
-		const auto& b = bodies[id];
-		near[id]      = Near { Vector3r::Zero(), 0 };
-		if (!b) {
-			p.kind = missing;
-			continue;
-		}
-		const State& s = *b->state;
-		p.pos          = s.pos;
-		p.vel          = s.vel;
-		p.angVel       = s.angVel;
-		p.subdomain    = b->subdomain;
-		p.radius       = 0;
-		p.reach        = 0;
-		if (b->isClump()) p.kind = clump;
-		else if (!b->shape || !b->material || b->material->getClassIndex() != pendularIndex)
-			p.kind = other;
-		else {
-			const int shape = b->shape->getClassIndex();
-			if (shape == sphereIndex) {
-				p.kind   = pendularSphere;
-				p.radius = static_cast<const Sphere&>(*b->shape).radius;
-				// Only materials whose bridges form when the films touch reach beyond the surface.
-				if (static_cast<const PendularMat&>(*b->material).filmFormation)
-					if (const auto* film = dynamic_cast<const PendularState*>(&s)) p.reach = film->thickness(p.radius);
-			} else
-				p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
-		}
-		if (p.kind == pendularSphere) near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
-	}
 	// The bound on the gaps of potential pairs. A pair checked at step s with gap g(s) stores
 	// g(s) - 2 D(s) (slot.gapBound); D is the largest distance of a body from its position at the start
 	// of the epoch, so either body moved at most D(s) + D(t) between s and t and g(t) >= g(s) - 2 D(s)
@@ -171,20 +130,60 @@ void PendularLoop::gather(int threads)
 	// potential pair checked) when a body has moved epochMove of the smallest radius, and when any
 	// body's radius, film reach, material kind or subdomain changed (Near.radius encodes them), so
 	// that the bound holds for the radii it was computed with. Films that reach beyond the surface
-	// (formation='films') change every step: no bound then.
-	bool restart = epoch.size() != n, films = false;
+	// (formation='films') change every step: no bound then. Checked in the same pass as the gathering.
+	int  restart = epoch.size() != n, films = 0;
 	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
 	epoch.resize(n);
+#ifdef YADE_OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies) reduction(max : restart, films, move2) \
+        reduction(min : rmin)
+#endif
 	for (size_t id = 0; id < n; ++id) {
-		const Particle& p = particles[id];
+		// Two levels: the Body, then, once it is cached, its State and Shape (a sphere's radius is on
+		// the Shape's second cache line).
+		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
+		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
+			const Body& ahead = *bodies[id + prefetchAhead];
+			prefetchObject(ahead.state.get());
+			__builtin_prefetch(ahead.shape.get());
+			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
+		}
+		Particle&   p = particles[id];
+		const auto& b = bodies[id];
+		near[id]      = Near { Vector3r::Zero(), 0 };
+		if (!b) p.kind = missing;
+		else {
+			const State& s = *b->state;
+			p.pos          = s.pos;
+			p.vel          = s.vel;
+			p.angVel       = s.angVel;
+			p.subdomain    = b->subdomain;
+			p.radius       = 0;
+			p.reach        = 0;
+			if (b->isClump()) p.kind = clump;
+			else if (!b->shape || !b->material || b->material->getClassIndex() != pendularIndex)
+				p.kind = other;
+			else {
+				const int shape = b->shape->getClassIndex();
+				if (shape == sphereIndex) {
+					p.kind   = pendularSphere;
+					p.radius = static_cast<const Sphere&>(*b->shape).radius;
+					// Only materials whose bridges form when the films touch reach beyond the surface.
+					if (static_cast<const PendularMat&>(*b->material).filmFormation)
+						if (const auto* film = dynamic_cast<const PendularState*>(&s)) p.reach = film->thickness(p.radius);
+				} else
+					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
+			}
+		}
 		if (p.kind != pendularSphere) {
-			restart = restart || epoch[id].radius != 0;
+			restart = math::max(restart, int(epoch[id].radius != 0));
 			continue;
 		}
-		films   = films || p.reach != 0;
-		rmin    = math::min(rmin, p.radius);
-		restart = restart || epoch[id].radius != near[id].radius;
-		move2   = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
+		near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
+		films    = math::max(films, int(p.reach != 0));
+		rmin     = math::min(rmin, p.radius);
+		restart  = math::max(restart, int(epoch[id].radius != near[id].radius));
+		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
 	}
 	const Real move = math::sqrt(move2);
 	fullCheck       = restart || films || !(move < epochMove * rmin);
