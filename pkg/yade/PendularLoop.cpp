@@ -556,7 +556,7 @@ void PendularLoop::sortInteractions()
 	++nSorts;
 	if (records.empty()) return;
 	std::vector<Record> ordered;
-	ordered.reserve(recordOf.size());
+	ordered.reserve(records.capacity()); // room for the next steps' new records without moving them all again
 	std::vector<bool> placed(records.size(), false);
 	for (size_t k = 0; k < n; ++k) {
 		Slot& slot = slots[k];
@@ -567,11 +567,16 @@ void PendularLoop::sortInteractions()
 	}
 	// A record whose interaction is no longer in the container (none should be: the collider erases
 	// only potential interactions, Python erasures drop the records first) goes back to its objects.
-	for (const auto& entry : recordOf)
-		if (!placed[entry.second]) store(records[entry.second]);
-	recordOf.clear();
-	for (size_t k = 0; k < ordered.size(); ++k)
-		recordOf[ordered[k].interaction.get()] = int(k);
+	for (auto it = recordOf.begin(); it != recordOf.end();) {
+		if (placed[it->second]) {
+			++it;
+			continue;
+		}
+		store(records[it->second]);
+		it = recordOf.erase(it);
+	}
+	for (size_t k = 0; k < ordered.size(); ++k) // the map's nodes stay, their values change
+		recordOf.find(ordered[k].interaction.get())->second = int(k);
 	records.swap(ordered);
 	freeRecords.clear();
 }
