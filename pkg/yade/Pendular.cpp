@@ -950,6 +950,32 @@ void Law2_ScGeom_PendularPhys_Bridge::clearBodies(Scene* current)
 			if (auto* state = dynamic_cast<PendularState*>(b->state.get())) liquidRemoved += state->film;
 }
 
+void Law2_ScGeom_PendularPhys_Bridge::formBridge(Body::id_t id1, Body::id_t id2)
+{
+	refuseWhileRunning("formBridge()");
+	const auto&       current = Omega::instance().getScene();
+	const std::string pair    = "formBridge(id1=" + std::to_string(id1) + ", id2=" + std::to_string(id2) + "): ";
+	PendularLoop::syncScene(current.get(), true); // the loop reads the changed objects at its next step
+	const shared_ptr<Interaction> I = current->interactions->find(id1, id2);
+	if (!I || !I->isReal()) throw std::invalid_argument(pair + "no real interaction between these bodies (utils.createInteraction makes one)");
+	auto* phys = dynamic_cast<PendularPhys*>(I->phys.get());
+	auto* geom = dynamic_cast<const ScGeom*>(I->geom.get());
+	if (!phys || !geom) throw std::invalid_argument(pair + "the interaction has no ScGeom and PendularPhys");
+	if (!phys->wet || phys->modelIndex < 0) throw std::invalid_argument(pair + "the materials are dry (PendularMat.wet = False) or the bridge's liquid was rejected");
+	if (phys->film) throw std::invalid_argument(pair + "liquid='film': a film-mode bridge takes its liquid from the films, not from a saved state");
+	if (phys->active) throw std::invalid_argument(pair + "the interaction already has a bridge");
+	const Real gap = -geom->penetrationDepth;
+	if (!(gap <= phys->bridge.rupture))
+		throw std::invalid_argument(pair + "gap = " + std::to_string(gap) + " m is beyond the rupture distance; allowed: gap <= "
+		                            + std::to_string(phys->bridge.rupture) + " m");
+	phys->active = true;
+	if (pendularOwner(current->subdomain, Body::byId(id1, current)->subdomain, Body::byId(id2, current)->subdomain)) {
+		nBridges += 1;
+		liquidVolume += phys->Vb;
+		liquidFormed += phys->Vb;
+	}
+}
+
 boost::python::dict Law2_ScGeom_PendularPhys_Bridge::liquidTotals() const
 {
 	refuseWhileRunning("liquidTotals()");

@@ -42,7 +42,10 @@ VALIDATION_5S = dict(VALIDATION, run_s=3.0, snapshots=12, snapshot_dt_s=0.25)
 VALIDATION_10S = dict(VALIDATION, run_s=5.0, snapshots=14, snapshot_dt_s=0.25)
 # Gladkyy's cell size: "nearly 200 000" spheres of R = 2.381 mm, about 168 000 flowing, i.e. the
 # validation cell (about 15 000 flowing) enlarged 2.2 times linearly; for speed probes.
-GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["Ri"], Rs=2.2 * VALIDATION["Rs"], H=2.2 * VALIDATION["H"])
+# Filled to 1.62 H instead of 1.4 H (see build): about 168 000 flowing spheres, which settle to about H;
+# with 1.4 H, 145 000 would settle to about 0.86 H (the validation cell settles to 37 of its 40 mm).
+GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["Ri"], Rs=2.2 * VALIDATION["Rs"], H=2.2 * VALIDATION["H"],
+                    fill=1.62)
 # The ci cell at Gladkyy's time step, about tc/100 (he needed about 1e6 steps for 5 s at tc = 5.4e-4 s):
 # the time-step experiment of the cause analysis, compared with the ci references (tc/20).
 CI_DT100 = dict(CI, dt_over_tc=0.01)
@@ -99,10 +102,12 @@ def wall_positions(cfg):
     return {"static": static, "rotating": rotating}
 
 
-def build(cfg, case, spacing=2.2, fill=1.4):
+def build(cfg, case, spacing=2.2, fill=None):
     """O.reset(), then the cell of configuration dict `cfg` with the liquid of `case`: wall spheres and
     flowing spheres on a ring lattice of `spacing` radii (slightly jittered) filling the annulus to
-    fill H. Returns {'flowing', 'static', 'rotating'} lists of ids."""
+    fill H (default: the configuration's fill, else 1.4). Returns {'flowing', 'static', 'rotating'} lists of ids."""
+    if fill is None:
+        fill = cfg.get("fill", 1.4)
     from yade import O
     from yade.utils import sphere
 
@@ -137,7 +142,7 @@ def prepare(config, case, path, seed=None, log=print):
     from .scene import engines
 
     cfg = dict(CONFIGS[config], **({} if seed is None else {"seed": seed}))
-    # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H).
+    # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H; see build).
     ids = build(cfg, case)
     flowing = ids["flowing"]
     O.engines = engines(gravity=(0, 0, -9.81), damping=0.3)
@@ -204,11 +209,7 @@ def run(path_in, outdir, config=None, case=None, log=print):
     packing; the bridges form at the contacts of the first step).
     Returns a dict with particle-steps per second and the mean torques [N m] of the second half.
     """
-    import builtins
-    import time
-
     from yade import O
-    from yade.wrapper import PyRunner
 
     O.load(path_in)
     info = json.loads(O.tags["shearcell"])
@@ -218,48 +219,262 @@ def run(path_in, outdir, config=None, case=None, log=print):
         _set_case(info, case)
     O.tags["shearcell"] = json.dumps(info)
     cfg = info["cfg"]
-    omega = 2 * math.pi / cfg["period"]
     eng = run_engines(info)
     os.makedirs(outdir, exist_ok=True)
     steps = int(cfg["run_s"] / O.dt)
-    every = max(1, int(cfg["snapshot_dt_s"] / O.dt))
-    # Snapshots over the last snapshots * snapshot_dt_s of the run; torques 20 times per snapshot interval.
-    snap_iters = [steps - every * k for k in range(cfg["snapshots"], 0, -1)]
-    torques = []
-    progress = [steps * k // 10 for k in range(1, 10)]
-
-    def record():
-        rot = sum(_torque_z(b) for b in info["rotating"])
-        sta = sum(_torque_z(b) for b in info["static"])
-        torques.append((O.time, rot, sta))
-        if progress and O.iter - start >= progress[0]:
-            progress.pop(0)
-            log("  %d %% at t = %.3f s, %.3g particle-steps/s, torque rotating %.3e N m" % (
-                100 * (O.iter - start) // steps, O.time, len(info["flowing"]) * (O.iter - start) / (time.time() - t0), rot))
-        if snap_iters and O.iter - start >= snap_iters[0]:
-            snap_iters.pop(0)
-            n = cfg["snapshots"] - len(snap_iters)
-            snapshot(os.path.join(outdir, "snap_%03d.npz" % n), info)
-            log("  t = %.3f s, snapshot %d, torque rotating %.3e N m, static %.3e N m" % (O.time, n, rot, sta))
-
-    # PyRunner executes a string in yade's global namespace: publish the recorder there.
-    eng.append(PyRunner(command="shearcellRecord()", iterPeriod=max(1, every // 20)))
-    builtins.shearcellRecord = record
+    info["done_steps"] = info["next_snapshot"] = 0  # a run of its own, also when it continues another one's final state
+    rec = _Recorder(info, outdir, steps, log)
+    eng.append(rec.engine())
     O.engines = eng
-    start = O.iter
-    t0 = time.time()
     O.run(steps + 1, True)
-    wall = time.time() - t0
-    T = np.array(torques)
-    half = len(T) // 2
-    out = {"particle_steps_per_s": len(info["flowing"]) * steps / wall, "wall_s": wall, "steps": steps,
-           "torque_rotating_Nm": float(np.mean(T[half:, 1])), "torque_static_Nm": float(np.mean(T[half:, 2])),
-           "Omega_rad_s": omega}
-    np.savetxt(os.path.join(outdir, "torque.csv"), T, delimiter=",", header="time_s,torque_rotating_Nm,torque_static_Nm", comments="")
-    with open(os.path.join(outdir, "run.json"), "w") as f:
-        json.dump(dict(out, config=info["config"], case=info["case"], cfg=cfg), f, indent=1)
+    T = np.array(rec.torques)
+    out = _finish(info, outdir, T, steps, rec.wall())
+    np.savetxt(os.path.join(outdir, "torque.csv"), T, delimiter=",", header=TORQUE_HEADER, comments="")
     O.save(os.path.join(outdir, "final.yade.gz"))
     return out
+
+
+TORQUE_HEADER = "time_s,torque_rotating_Nm,torque_static_Nm"
+
+
+class _Recorder:
+    """What a run records (run, run_segment): the torques on the rotating and static walls 20 times per
+    snapshot interval, the snapshots of the last `snapshots` intervals of a run of `steps` steps, and
+    the progress. info["done_steps"] and info["next_snapshot"] carry a run over segments."""
+
+    def __init__(self, info, outdir, steps, log):
+        import time
+
+        from yade import O
+
+        self.info, self.outdir, self.steps, self.log = info, outdir, steps, log
+        cfg = info["cfg"]
+        self.every = max(1, int(cfg["snapshot_dt_s"] / O.dt))
+        self.snap_iters = snapshot_steps(cfg, O.dt)
+        self.done0 = info.setdefault("done_steps", 0)
+        info.setdefault("next_snapshot", 0)
+        self.progress = [steps * k // 10 for k in range(1, 10) if steps * k // 10 > self.done0]
+        self.torques = []
+        self.start, self.t0 = O.iter, time.time()
+
+    def done(self):
+        """Steps of the run done so far."""
+        from yade import O
+
+        return self.done0 + O.iter - self.start
+
+    def wall(self):
+        import time
+
+        return time.time() - self.t0
+
+    def engine(self, first=False):
+        """The PyRunner that calls this recorder (PyRunner executes a string in yade's global namespace:
+        the recorder is published there); first: also at the first step (segments, which follow each
+        other without a gap in the records)."""
+        import builtins
+
+        from yade.wrapper import PyRunner
+
+        builtins.shearcellRecord = self
+        return PyRunner(command="shearcellRecord()", iterPeriod=max(1, self.every // 20), initRun=first)
+
+    def __call__(self):
+        from yade import O
+
+        info, done = self.info, self.done()
+        rot = sum(_torque_z(b) for b in info["rotating"])
+        sta = sum(_torque_z(b) for b in info["static"])
+        self.torques.append((_now(info), rot, sta))
+        if self.progress and done >= self.progress[0]:
+            self.progress.pop(0)
+            self.log("  %d %% at t = %.3f s, %.3g particle-steps/s, torque rotating %.3e N m" % (
+                100 * done // self.steps, _now(info), len(info["flowing"]) * (O.iter - self.start) / self.wall(), rot))
+        k = info["next_snapshot"]
+        if k < len(self.snap_iters) and done >= self.snap_iters[k]:
+            info["next_snapshot"] = k + 1
+            snapshot(os.path.join(self.outdir, "snap_%03d.npz" % (k + 1)), info)
+            self.log("  t = %.3f s, snapshot %d, torque rotating %.3e N m, static %.3e N m" % (_now(info), k + 1, rot, sta))
+
+
+def snapshot_steps(cfg, dt):
+    """Steps of a run (from its start) at which its snapshots are taken: over the last `snapshots`
+    intervals of `snapshot_dt_s`."""
+    steps, every = int(cfg["run_s"] / dt), max(1, int(cfg["snapshot_dt_s"] / dt))
+    return [steps - every * k for k in range(cfg["snapshots"], 0, -1)]
+
+
+def _finish(info, outdir, T, steps, wall):
+    """run.json of a finished run (T: its torque records); returns its dict."""
+    cfg = info["cfg"]
+    late = slice(len(T) // 2, None)  # the second half of the run
+    out = {"particle_steps_per_s": len(info["flowing"]) * steps / wall, "wall_s": wall, "steps": steps,
+           "torque_rotating_Nm": float(np.mean(T[late, 1])), "torque_static_Nm": float(np.mean(T[late, 2])),
+           "Omega_rad_s": 2 * math.pi / cfg["period"]}
+    with open(os.path.join(outdir, "run.json"), "w") as f:
+        json.dump(dict(out, config=info["config"], case=info["case"], cfg=cfg), f, indent=1)
+    return out
+
+
+def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.0, until_step=None, keep=None, log=print):
+    """One segment of a run too long for one sitting (Gladkyy's cell): continue keep/state.npz if it
+    exists, else start from the cell saved by save_state in `state_in` (a dry cell given the liquid of
+    `case`, as run(..., case=...)); run until the configuration's run_s is done or `budget_s` of wall
+    time has passed (or step `until_step` of the run is reached), saving keep/state.npz every
+    `save_every_s` and at the end. Torques are appended to keep/torque.csv; snapshots go to outdir as
+    in run(); when the run is complete, outdir gets run.json and a copy of torque.csv. keep: the
+    directory of what the next segment continues from (default outdir).
+    Returns {"complete": bool, "done_steps", "steps", "t_s", "particle_steps_per_s"} of this segment."""
+    import time
+
+    from yade import O
+
+    keep = outdir if keep is None else keep
+    state = os.path.join(keep, "state.npz")
+    for d in (outdir, keep):
+        os.makedirs(d, exist_ok=True)
+    continued = os.path.exists(state)
+    info = load_state(state if continued else state_in, case=None if continued else case)
+    steps = int(info["cfg"]["run_s"] / O.dt)
+    rec = _Recorder(info, outdir, steps, log)
+    O.engines = O.engines + [rec.engine(first=True)]
+    torque_csv = os.path.join(keep, "torque.csv")
+    if not continued and os.path.exists(torque_csv):
+        os.remove(torque_csv)
+
+    def save():
+        info["done_steps"] = rec.done()
+        info["wall_s"] = info.get("wall_s", 0.0) + rec.wall() - save.wall
+        save.wall = rec.wall()
+        save_state(state, info)
+        with open(torque_csv, "a") as f:
+            np.savetxt(f, np.array(rec.torques).reshape(-1, 3), delimiter=",", header=TORQUE_HEADER if os.path.getsize(torque_csv) == 0 else "",
+                       comments="")
+        rec.torques.clear()
+        log("  saved %s at t = %.3f s (%d of %d steps)" % (state, _now(info), info["done_steps"], steps))
+
+    save.wall = 0.0
+    open(torque_csv, "a").close()
+    chunk = max(1, rec.every // 20)
+    last = time.time()
+    iter0 = O.iter
+    end = steps + 1 if until_step is None else min(steps + 1, until_step)
+    while rec.done() < end:  # at least one chunk of steps per segment
+        O.run(min(chunk * 2, end - rec.done()), True)
+        if rec.wall() >= budget_s:
+            break
+        if time.time() - last > save_every_s:
+            save()
+            last = time.time()
+    save()
+    out = {"complete": rec.done() >= steps + 1, "done_steps": rec.done(), "steps": steps, "t_s": _now(info),
+           "particle_steps_per_s": len(info["flowing"]) * (O.iter - iter0) / max(rec.wall(), 1e-9)}
+    if out["complete"]:
+        T = np.loadtxt(torque_csv, delimiter=",", skiprows=1, ndmin=2)
+        _finish(info, outdir, T, steps, info["wall_s"])
+        if keep != outdir:
+            np.savetxt(os.path.join(outdir, "torque.csv"), T, delimiter=",", header=TORQUE_HEADER, comments="")
+    return out
+
+
+def _law():
+    """The Law2_ScGeom_PendularPhys_Bridge of the current engines (its bridge totals)."""
+    from yade import O
+
+    for e in O.engines:
+        for f in getattr(getattr(e, "lawDispatcher", None), "functors", []):
+            if type(f).__name__ == "Law2_ScGeom_PendularPhys_Bridge":
+                return f
+    raise ValueError("engines: no Law2_ScGeom_PendularPhys_Bridge in O.engines")
+
+
+def save_state(path, info):
+    """Save the running cell compactly to `path` (npz, written to path + '.tmp' and renamed): every
+    body's position, velocity, angular velocity and orientation (axis and angle; float64), the real interactions with
+    their bridges (and tangential forces when the particles have friction), the bridge totals, O.time,
+    O.dt and `info` (JSON). About 110 B per body and 9 B per real interaction, so that a
+    Gladkyy-size state (2e5 bodies) can be committed and continued on another machine or with a later
+    version of the plugin, which O.save's archives do not allow (their layout follows the classes).
+    What is not kept: the potential interactions (the collider finds them again) and the loop's
+    caches; a continued run differs from an uninterrupted one by round-off (the forces on a body are
+    summed in another order)."""
+    from yade import O
+
+    if ALL_CASES[info["case"]].get("liquid", "fixed") != "fixed":
+        raise ValueError("save_state: liquid=%r: only fixed-volume bridges are saved" % ALL_CASES[info["case"]]["liquid"])
+    bodies = list(O.bodies)
+    arrays = {k: np.array([getattr(b.state, k) for b in bodies]) for k in ("pos", "vel", "angVel")}
+    arrays["ori"] = np.array([tuple(a) + (angle,) for a, angle in (b.state.ori.toAxisAngle() for b in bodies)])  # axis, angle [rad]
+    arrays["radius"] = np.array([b.shape.radius for b in bodies])
+    arrays["fixed"] = np.array([not b.dynamic for b in bodies])
+    pairs, active, shear = [], [], []
+    for I in O.interactions:
+        if I.isReal:
+            pairs.append((I.id1, I.id2))
+            active.append(I.phys.active)
+            if info["cfg"]["friction"] > 0:
+                shear.append(tuple(I.phys.shearForce))
+    law = _law()
+    totals = {k: float(getattr(law, k)) for k in ("nBridges", "liquidVolume", "liquidFormed", "liquidReleased")}
+    meta = dict(info, time_s=_now(info), dt_s=O.dt, totals=totals)
+    for k in ("flowing", "static", "rotating"):
+        arrays["ids_" + k] = np.array(meta.pop(k), dtype=np.int32)
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        np.savez_compressed(f, pairs=np.array(pairs, dtype=np.int32).reshape(-1, 2), active=np.array(active, dtype=bool),
+                            shear=np.array(shear).reshape(-1, 3), meta=json.dumps(meta), **arrays)
+    os.replace(tmp, path)
+
+
+def load_state(path, case=None, loop="fused"):
+    """Rebuild a cell saved by save_state in a new scene (O.reset()) with the running engines and
+    return its info dict. Bodies keep their ids; the real interactions are made again
+    (utils.createInteraction) and their bridges formed (Law2_ScGeom_PendularPhys_Bridge.formBridge),
+    so nBridges and liquidVolume continue; liquidFormed and liquidReleased count from here, their
+    values at the save are in info["totals"]. case: give a dry saved cell this liquid instead (every
+    contact forms a bridge at the first step, as with run(..., case=...))."""
+    from yade import O
+    from yade.minieigenHP import Quaternion
+    from yade.utils import createInteraction, sphere
+
+    d = np.load(path)
+    info = json.loads(str(d["meta"]))
+    for k in ("flowing", "static", "rotating"):
+        info[k] = d["ids_" + k].tolist()
+    if case is not None and case != info["case"]:
+        if case not in ALL_CASES:
+            raise ValueError("case: %r is not one of %s" % (case, ", ".join(ALL_CASES)))
+        if ALL_CASES[info["case"]]["wet"]:
+            raise ValueError("case: only a dry saved cell can be given a liquid (saved: %r, asked: %r)" % (info["case"], case))
+        info["case"] = case
+    cfg = info["cfg"]
+    O.reset()
+    mat = O.materials.append(_material(cfg, info["case"]))
+    ids = O.bodies.append([sphere(tuple(p), r, material=mat, fixed=bool(f)) for p, r, f in zip(d["pos"], d["radius"], d["fixed"])])
+    if ids != list(range(len(ids))):
+        raise ValueError("load_state: the bodies did not get the saved ids 0..%d" % (len(ids) - 1))
+    for b, v, w, q in zip(O.bodies, d["vel"], d["angVel"], d["ori"]):
+        b.state.vel, b.state.angVel = tuple(v), tuple(w)
+        b.state.ori = Quaternion(tuple(q[:3]), q[3])
+    O.dt = info.pop("dt_s")
+    O.engines = run_engines(info, loop=loop)
+    info["t_offset_s"] = info.pop("time_s")
+    law = _law()
+    frictional = cfg["friction"] > 0
+    for k, (a, b) in enumerate(d["pairs"]):
+        I = createInteraction(int(a), int(b))
+        if d["active"][k]:
+            law.formBridge(int(a), int(b))
+        if frictional:
+            I.phys.shearForce = tuple(d["shear"][k])
+    return info
+
+
+def _now(info):
+    """Time of the cell since its preparation [s] (a cell rebuilt by load_state starts at O.time = 0)."""
+    from yade import O
+
+    return O.time + info.get("t_offset_s", 0.0)
 
 
 def _torque_z(bid):
@@ -306,7 +521,7 @@ def snapshot(path, info):
         xI.append(O.bodies[other].state.pos if other in flowing else I.geom.contactPoint)
         F.append(f)
         gap.append(-I.geom.penetrationDepth)
-    np.savez_compressed(path, x=x, v=v, m=m, xP=np.array(xP), xI=np.array(xI), F=np.array(F), gap=np.array(gap), t=O.time, **walls)
+    np.savez_compressed(path, x=x, v=v, m=m, xP=np.array(xP), xI=np.array(xI), F=np.array(F), gap=np.array(gap), t=_now(info), **walls)
 
 
 def summary(fit):

@@ -1,0 +1,37 @@
+# Gladkyy's cell at his scale (the Luding/Roy proportions enlarged 2.2 times: about 168 000 flowing
+# spheres, configuration gladkyy_size), run in segments of at most BUDGET_MIN minutes of wall time
+# (default 110), each continuing the compact state of the last one (shearcell.save_state, about
+# 15 MB, committed with the torques so that any clone can continue the run).
+# Run:  build/yade-capillary -j2 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]
+#   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
+#   STOP: window (default: stop before the first snapshot of the averaging window) | end
+# Writes data/shear_cell_runs/gladkyy_size/prepared.npz, and per case
+# data/shear_cell_runs/gladkyy_size/CASE/{state.npz, torque.csv} (what the next segment continues from)
+# and results/shear_cell/gladkyy_size/CASE/ (the snapshots; run.json and torque.csv when complete).
+import os
+import sys
+
+from yade_capillary import shearcell
+
+case = sys.argv[1]
+budget_min = float(sys.argv[2]) if len(sys.argv) > 2 else 110.0
+stop = sys.argv[3] if len(sys.argv) > 3 else "window"
+if not 0 < budget_min <= 120:
+    raise ValueError("BUDGET_MIN: %g is outside (0, 120] (segments of at most 2 h)" % budget_min)
+if stop not in ("window", "end"):
+    raise ValueError("STOP: %r is not one of window, end" % stop)
+if case != "prepare" and case not in shearcell.ALL_CASES:
+    raise ValueError("CASE: %r is not one of prepare, %s" % (case, ", ".join(shearcell.ALL_CASES)))
+root = os.path.join("data", "shear_cell_runs", "gladkyy_size")
+prepared = os.path.join(root, "prepared.npz")
+if case == "prepare":
+    os.makedirs(root, exist_ok=True)
+    info = shearcell.prepare("gladkyy_size", "dry", os.path.join("results", "shear_cell", "gladkyy_size", "prepared.yade.gz"))
+    shearcell.save_state(prepared, info)
+    print("prepared: %d flowing spheres, %s (%.1f MB)" % (len(info["flowing"]), prepared, os.path.getsize(prepared) / 1e6))
+    sys.exit(0)
+until = shearcell.snapshot_steps(shearcell.CONFIGS["gladkyy_size"], shearcell.CONFIGS["gladkyy_size"]["dt_over_tc"] * shearcell.CONFIGS["gladkyy_size"]["tc"])[0] if stop == "window" else None
+out = shearcell.run_segment(prepared, os.path.join("results", "shear_cell", "gladkyy_size", case), case=case, budget_s=60 * budget_min,
+                            until_step=until, keep=os.path.join(root, case))
+print("segment: %(done_steps)d of %(steps)d steps done, t = %(t_s).3f s, %(particle_steps_per_s).3g particle-steps/s, complete %(complete)s" % out)
+sys.exit(0)
