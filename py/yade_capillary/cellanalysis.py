@@ -47,7 +47,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     rho = np.zeros_like(grid.R)
     j = np.zeros((3,) + grid.R.shape)
     sig_c = np.zeros((3, 3) + grid.R.shape)
-    data = [np.load(s) for s in snaps]
+    data = [dict(np.load(s)) for s in snaps]  # decompressed once (an NpzFile decompresses at every access)
     for d in data:
         r_, j_ = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])
         rho += r_ / len(data)
@@ -232,8 +232,11 @@ def crossing_torque(data, r0):
 def wall_contact_mask(d):
     """Which contacts of snapshot d are with a wall sphere: their partner point xI is a contact point,
     not the (exactly copied) position of a flowing sphere."""
-    flowing = {row.tobytes() for row in np.ascontiguousarray(d["x"])}
-    return np.array([row.tobytes() not in flowing for row in np.ascontiguousarray(d["xI"])], dtype=bool)
+    if "_wall" not in d:  # cached in the snapshot's dict
+        rows = np.dtype((np.void, 3 * np.dtype(float).itemsize))
+        x, xI = (np.ascontiguousarray(d[k], dtype=float).reshape(-1, 3).view(rows).ravel() for k in ("x", "xI"))
+        d["_wall"] = ~np.isin(xI, x)
+    return d["_wall"]
 
 
 def walls_inside(data, r0):

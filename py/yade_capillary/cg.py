@@ -18,6 +18,7 @@ evaluated with Gauss-Legendre nodes. For a contact with a wall or a fixed partic
 contact point as x_I: the integral then runs from the flowing particle to the contact point.
 """
 import numpy as np
+import scipy.sparse
 
 GAUSS_NODES = 8
 # The kernel is cut at CUTOFF widths (there it is e^-18 = 1.5e-8 of its peak): a point contributes to
@@ -72,21 +73,25 @@ class Grid:
             return out
         w, dr, dz = self.w, self.r[1] - self.r[0], self.z[1] - self.z[0]
         hr, hz = int(np.ceil(CUTOFF * w / dr)), int(np.ceil(CUTOFF * w / dz))
-        di, dk = np.meshgrid(np.arange(-hr, hr + 1), np.arange(-hz, hz + 1), indexing="ij")
-        di, dk = di.ravel(), dk.ravel()
-        flat = np.zeros((nf, nr * nz))
-        size = max(1, 4_000_000 // len(di))
-        for sl in _chunks(len(ri), size):
-            i = np.rint((ri[sl] - self.r[0]) / dr).astype(np.int64)[:, None] + di[None]
+        di, dk = np.arange(-hr, hr + 1), np.arange(-hz, hz + 1)
+        window = len(di) * len(dk)
+        flat = np.zeros((nr * nz, nf))
+        for sl in _chunks(len(ri), max(1, 4_000_000 // window)):
+            n = sl.stop - sl.start
+            i = np.rint((ri[sl] - self.r[0]) / dr).astype(np.int64)[:, None] + di[None]  # (n, window rows)
             k = np.rint((zi[sl] - self.z[0]) / dz).astype(np.int64)[:, None] + dk[None]
-            inside = (i >= 0) & (i < nr) & (k >= 0) & (k < nz)
+            i_in, k_in = (i >= 0) & (i < nr), (k >= 0) & (k < nz)
             i, k = np.clip(i, 0, nr - 1), np.clip(k, 0, nz - 1)
-            d2 = (self.r[i] - ri[sl, None]) ** 2 + (self.z[k] - zi[sl, None]) ** 2
-            K = np.where(inside & (d2 <= (CUTOFF * w) ** 2), np.exp(-d2 / (2 * w * w)), 0.0) / (2 * np.pi * w * w * 2 * np.pi * self.r[i])
-            node = (i * nz + k).ravel()
-            for f in range(nf):
-                flat[f] += np.bincount(node, weights=(K * weights[sl, f, None]).ravel(), minlength=nr * nz)
-        return flat.reshape(nf, nr, nz)
+            dr2, dz2 = (self.r[i] - ri[sl, None]) ** 2, (self.z[k] - zi[sl, None]) ** 2
+            # The Gaussian factorises in r and z: 2 x 25 exponentials per point instead of 625.
+            gr = np.where(i_in, np.exp(-dr2 / (2 * w * w)), 0.0) / (2 * np.pi * w * w * 2 * np.pi * self.r[i])
+            gz = np.where(k_in, np.exp(-dz2 / (2 * w * w)), 0.0)
+            K = np.where(dr2[:, :, None] + dz2[:, None, :] <= (CUTOFF * w) ** 2, gr[:, :, None] * gz[:, None, :], 0.0)
+            node = i[:, :, None] * nz + k[:, None, :]
+            # The window of each point as a row of a sparse (points x nodes) matrix: all fields in one product.
+            A = scipy.sparse.csr_matrix((K.ravel(), node.ravel(), np.arange(0, n * window + 1, window)), shape=(n, nr * nz))
+            flat += A.T @ weights[sl]
+        return flat.T.reshape(nf, nr, nz)
 
     def volume_elements(self):
         """2 pi r dr dz of every node (trapezoid weights) [m^3], for sum rules."""
