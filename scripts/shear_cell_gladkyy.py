@@ -6,12 +6,14 @@
 #   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
 #   STOP: window (default: stop before the first snapshot of the averaging window) | end
 # Writes data/shear_cell_runs/gladkyy_size/prepared.npz, and per case
-# data/shear_cell_runs/gladkyy_size/CASE/{state.npz, torque.csv} (what the next segment continues from)
-# and results/shear_cell/gladkyy_size/CASE/ (the snapshots; run.json and torque.csv when complete).
+# data/shear_cell_runs/gladkyy_size/CASE/{state.npz, torque.csv, cg_NNN.npz} (what the next segment continues
+# from, and the CG fields of each snapshot; run.json and fits.json from cellanalysis.analyse_reduced when
+# the run is complete) and results/shear_cell/gladkyy_size/CASE/ (the snapshots themselves).
+import json
 import os
 import sys
 
-from yade_capillary import shearcell
+from yade_capillary import cellanalysis, shearcell
 
 case = sys.argv[1]
 budget_min = float(sys.argv[2]) if len(sys.argv) > 2 else 110.0
@@ -34,4 +36,7 @@ until = shearcell.snapshot_steps(shearcell.CONFIGS["gladkyy_size"], shearcell.CO
 out = shearcell.run_segment(prepared, os.path.join("results", "shear_cell", "gladkyy_size", case), case=case, budget_s=60 * budget_min,
                             until_step=until, keep=os.path.join(root, case))
 print("segment: %(done_steps)d of %(steps)d steps done, t = %(t_s).3f s, %(particle_steps_per_s).3g particle-steps/s, complete %(complete)s" % out)
+if out["complete"]:  # fits from the reduced snapshots (committed), whichever sessions took them
+    fit = cellanalysis.analyse_reduced(os.path.join(root, case))
+    print(json.dumps({k: fit[k] for k in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "band_points")}, indent=1, default=float))
 sys.exit(0)

@@ -33,35 +33,25 @@ CONVENTIONS = {
 }
 
 
-def analyse(rundir, gamma_dot_min=None, heights=5):
-    """Analyse run directory `rundir` (run.json, torque.csv, snap_*.npz); writes fits.json,
-    profiles.csv, contacts_vs_a.csv and PNG plots there; returns the fits dict."""
-    with open(os.path.join(rundir, "run.json")) as f:
-        run = json.load(f)
-    cfg = run["cfg"]
-    R, Omega = cfg["R"], run["Omega_rad_s"]
-    snaps = sorted(glob.glob(os.path.join(rundir, "snap_*.npz")))
-    if not snaps:
-        raise ValueError("analyse: no snapshots in %s" % rundir)
-    grid = cg.Grid(np.arange(cfg["Ri"] + R, cfg["Ro"] - R + 1e-12, R / 2), np.arange(R, cfg["H"] + 1e-12, R / 2), R)
-    rho = np.zeros_like(grid.R)
-    j = np.zeros((3,) + grid.R.shape)
-    sig_c = np.zeros((3, 3) + grid.R.shape)
-    data = [dict(np.load(s)) for s in snaps]  # decompressed once (an NpzFile decompresses at every access)
-    for d in data:
-        r_, j_ = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])
-        rho += r_ / len(data)
-        j += j_ / len(data)
-        sig_c += cg.contact_stress(grid, d["xP"], d["xI"], d["F"]) / len(data)
-    omega = cg.angular_velocity(grid, rho, j)
+def analysis_grid(cfg):
+    """The (r, z) grid of the analysis of a cell of configuration dict cfg: nodes R/2 apart, kernel width R."""
+    R = cfg["R"]
+    return cg.Grid(np.arange(cfg["Ri"] + R, cfg["Ro"] - R + 1e-12, R / 2), np.arange(R, cfg["H"] + 1e-12, R / 2), R)
 
+
+def _omega_lookup(grid, omega):
+    """omega at points (r, z): the value of the nearest node at or above (searchsorted), 0 where NaN."""
     def omega_at(r, z):
         i = np.clip(np.searchsorted(grid.r, r), 0, len(grid.r) - 1)
         k = np.clip(np.searchsorted(grid.z, z), 0, len(grid.z) - 1)
         return np.nan_to_num(omega[i, k])
+    return omega_at
 
-    sig_k = sum(cg.kinetic_stress(grid, d["x"], d["v"], d["m"], omega_at) for d in data) / len(data)
-    sigma = sig_c + sig_k
+
+def _fit_fields(grid, rho, sigma, omega, cfg, Omega, gamma_dot_min, heights):
+    """The fits of time-averaged CG fields: erf band fits at `heights` heights, the tau-p fit in the band
+    (two selections) and its variants. Returns a dict of the fits and the intermediate fields."""
+    R = cfg["R"]
     p, tau = cg.pressure_and_shear(sigma)
     gdot = cg.strain_rate(grid, np.nan_to_num(omega))
     ratio = omega / Omega
@@ -90,8 +80,58 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     def yield_fit_of(sel):
         return fits.fit_yield(p[sel], tau[sel]) if sel.sum() >= 3 else {"error": "fewer than 3 band points"}
 
-    yield_fit, yield_threshold = yield_fit_of(band), yield_fit_of(band_threshold)
-    variants = fit_variants(sigma, gdot, away, gmin)
+    return {"p": p, "tau": tau, "gdot": gdot, "ratio": ratio, "bulk": bulk, "band": band, "band_fits": band_fits, "gmin": gmin,
+            "band_threshold": band_threshold, "yield": yield_fit_of(band), "yield_threshold": yield_fit_of(band_threshold),
+            "variants": fit_variants(sigma, gdot, away, gmin)}
+
+
+def _fit_summary(run, f, snapshots):
+    """The entries of fits.json common to analyse and analyse_reduced."""
+    y, yt, band_fits = f["yield"], f["yield_threshold"], f["band_fits"]
+    return {
+        "config": run["config"], "case": run["case"],
+        "mu": y.get("mu"), "mu_err": y.get("mu_err"), "c_Pa": y.get("c_Pa"), "c_err_Pa": y.get("c_err_Pa"),
+        "band_points": int(f["band"].sum()), "gamma_dot_min_1_s": f["gmin"], "band_points_threshold": int(f["band_threshold"].sum()),
+        "mu_threshold": yt.get("mu"), "mu_err_threshold": yt.get("mu_err"), "c_Pa_threshold": yt.get("c_Pa"), "c_err_Pa_threshold": yt.get("c_err_Pa"),
+        "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
+        "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "fit_variants": f["variants"],
+        "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": snapshots,
+    }
+
+
+def _write_profiles(rundir, grid, rho, f, cfg):
+    header = "r_m,z_m,rho_kg_m3,omega_over_Omega,gamma_dot_1_s,p_Pa,tau_Pa,in_band"
+    np.savetxt(os.path.join(rundir, "profiles.csv"),
+               np.stack([grid.R.ravel(), grid.Z.ravel(), rho.ravel(), f["ratio"].ravel(), f["gdot"].ravel(), f["p"].ravel(), f["tau"].ravel(),
+                         f["band"].ravel()], axis=1), delimiter=",", header=header, comments="")
+    _plots(rundir, grid, f["ratio"], f["bulk"], f["band_fits"], f["p"], f["tau"], f["band"], f["yield"], cfg)
+
+
+def analyse(rundir, gamma_dot_min=None, heights=5):
+    """Analyse run directory `rundir` (run.json, torque.csv, snap_*.npz); writes fits.json,
+    profiles.csv, contacts_vs_a.csv and PNG plots there; returns the fits dict."""
+    with open(os.path.join(rundir, "run.json")) as f:
+        run = json.load(f)
+    cfg = run["cfg"]
+    Omega = run["Omega_rad_s"]
+    snaps = sorted(glob.glob(os.path.join(rundir, "snap_*.npz")))
+    if not snaps:
+        raise ValueError("analyse: no snapshots in %s" % rundir)
+    grid = analysis_grid(cfg)
+    rho = np.zeros_like(grid.R)
+    j = np.zeros((3,) + grid.R.shape)
+    sig_c = np.zeros((3, 3) + grid.R.shape)
+    data = [dict(np.load(s)) for s in snaps]  # decompressed once (an NpzFile decompresses at every access)
+    for d in data:
+        r_, j_ = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])
+        rho += r_ / len(data)
+        j += j_ / len(data)
+        sig_c += cg.contact_stress(grid, d["xP"], d["xI"], d["F"]) / len(data)
+    omega = cg.angular_velocity(grid, rho, j)
+    omega_at = _omega_lookup(grid, omega)
+    sig_k = sum(cg.kinetic_stress(grid, d["x"], d["v"], d["m"], omega_at) for d in data) / len(data)
+    f = _fit_fields(grid, rho, sig_c + sig_k, omega, cfg, Omega, gamma_dot_min, heights)
+    band, bulk = f["band"], f["bulk"]
 
     torque_cg = cylinder_flux(data, cfg["Rs"], grid.w, omega_at)
     torque_cg_narrow = cylinder_flux(data, cfg["Rs"], grid.w / 4, omega_at)
@@ -124,26 +164,69 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     wet_in, wet_out = _wet_density(data, grid, band, bulk, cfg)
     contacts = contact_numbers(data)
 
-    out = {
-        "config": run["config"], "case": run["case"],
-        "mu": yield_fit.get("mu"), "mu_err": yield_fit.get("mu_err"), "c_Pa": yield_fit.get("c_Pa"), "c_err_Pa": yield_fit.get("c_err_Pa"),
-        "band_points": int(band.sum()), "gamma_dot_min_1_s": gmin, "band_points_threshold": int(band_threshold.sum()),
-        "mu_threshold": yield_threshold.get("mu"), "mu_err_threshold": yield_threshold.get("mu_err"),
-        "c_Pa_threshold": yield_threshold.get("c_Pa"), "c_err_Pa_threshold": yield_threshold.get("c_err_Pa"),
-        "Rc_m": [b.get("Rc_m") for b in band_fits], "W_m": [b.get("W_m") for b in band_fits], "band_fits": band_fits,
-        "torque_Nm": run["torque_rotating_Nm"], "torque_static_Nm": run["torque_static_Nm"], "torque_cg_at_Rs_Nm": torque_cg, "torque_cg_at_Rs_w4_Nm": torque_cg_narrow,
-        "wet_contact_density_band_1_m3": wet_in, "wet_contact_density_outside_1_m3": wet_out, "torque_closure": closure,
-        "fit_variants": variants, "contact_numbers": contacts,
-        "particle_steps_per_s": run["particle_steps_per_s"], "snapshots": len(data), "conventions": CONVENTIONS,
-    }
-    with open(os.path.join(rundir, "fits.json"), "w") as f:
-        json.dump(out, f, indent=1, default=float)
-    header = "r_m,z_m,rho_kg_m3,omega_over_Omega,gamma_dot_1_s,p_Pa,tau_Pa,in_band"
-    np.savetxt(os.path.join(rundir, "profiles.csv"),
-               np.stack([grid.R.ravel(), grid.Z.ravel(), rho.ravel(), ratio.ravel(), gdot.ravel(), p.ravel(), tau.ravel(), band.ravel()], axis=1),
-               delimiter=",", header=header, comments="")
-    _plots(rundir, grid, ratio, bulk, band_fits, p, tau, band, yield_fit, cfg)
+    out = dict(_fit_summary(run, f, len(data)), torque_cg_at_Rs_Nm=torque_cg, torque_cg_at_Rs_w4_Nm=torque_cg_narrow,
+               wet_contact_density_band_1_m3=wet_in, wet_contact_density_outside_1_m3=wet_out, torque_closure=closure,
+               contact_numbers=contacts, conventions=CONVENTIONS)
+    with open(os.path.join(rundir, "fits.json"), "w") as fh:
+        json.dump(out, fh, indent=1, default=float)
+    _write_profiles(rundir, grid, rho, f, cfg)
     _contact_plot(rundir, centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan))
+    return out
+
+
+def reduce_snapshot(snap_path, cfg, out_path):
+    """The coarse-grained fields of one snapshot on the analysis grid of cfg, in float32, written to
+    out_path (npz; about 1 MB for Gladkyy's cell, where a snapshot is about 40 MB): rho, j (r, theta,
+    z), sig_c (3 x 3) and the kinetic moment S = sum m v (x) v K (3 x 3; cylindrical components), t,
+    and the contact numbers. What analyse_reduced averages, for runs whose snapshots are taken in
+    several sessions (a run in segments) and do not outlive them."""
+    d = dict(np.load(snap_path))
+    grid = analysis_grid(cfg)
+    rho, j = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])
+    sig_c = cg.contact_stress(grid, d["xP"], d["xI"], d["F"])
+    S = cg.kinetic_stress(grid, d["x"], d["v"], d["m"], lambda r, z: np.zeros_like(r))
+    contacts = contact_numbers([d])
+    tmp = out_path + ".tmp"
+    with open(tmp, "wb") as f:
+        np.savez_compressed(f, rho=rho.astype(np.float32), j=j.astype(np.float32), sig_c=sig_c.astype(np.float32), S=S.astype(np.float32),
+                            t=float(d["t"]), mechanical_per_particle=contacts["mechanical_per_particle"],
+                            separated_bridges_per_particle=contacts["separated_bridges_per_particle"])
+    os.replace(tmp, out_path)
+
+
+def analyse_reduced(rundir, gamma_dot_min=None, heights=5):
+    """analyse() from the reduced snapshots cg_*.npz of rundir (reduce_snapshot) and its run.json:
+    the same fits (mu, c and their variants, band centres and widths) and profiles; not the
+    statistics that need every contact (contacts against the gap, the torque balance of cylinders).
+    The kinetic stress is taken relative to the mean velocity at the grid node (Weinhart et al. 2012:
+    <S> - j U - U j + rho U U, U = omega r e_theta) instead of at each particle: the two differ by
+    the kernel average of (omega(r_i) - omega(r))^2 r^2, second order in the kernel width."""
+    with open(os.path.join(rundir, "run.json")) as f:
+        run = json.load(f)
+    cfg = run["cfg"]
+    files = sorted(glob.glob(os.path.join(rundir, "cg_*.npz")))
+    if not files:
+        raise ValueError("analyse_reduced: no reduced snapshots (cg_*.npz) in %s" % rundir)
+    grid = analysis_grid(cfg)
+    red = [dict(np.load(f)) for f in files]
+    rho, j, sig_c, S = (np.mean([r[k].astype(float) for r in red], axis=0) for k in ("rho", "j", "sig_c", "S"))
+    omega = cg.angular_velocity(grid, rho, j)
+    U = np.nan_to_num(omega) * grid.R
+    sig_k = S.copy()
+    sig_k[1] -= U * j
+    sig_k[:, 1] -= j * U
+    sig_k[1, 1] += rho * U * U
+    f = _fit_fields(grid, rho, sig_c + sig_k, omega, cfg, run["Omega_rad_s"], gamma_dot_min, heights)
+    mech = [float(r["mechanical_per_particle"]) for r in red]
+    out = dict(_fit_summary(run, f, len(red)),
+               contact_numbers={"mechanical_per_particle": float(np.mean(mech)), "mechanical_std": float(np.std(mech)),
+                                "separated_bridges_per_particle": float(np.mean([float(r["separated_bridges_per_particle"]) for r in red]))},
+               conventions=dict(CONVENTIONS, kinetic_stress="relative to the mean velocity at the grid node (analyse_reduced)",
+                                torque="torque_Nm: on the rotating walls from their contacts, mean of the second half of the run"))
+    out["conventions"].pop("contacts_vs_a")
+    with open(os.path.join(rundir, "fits.json"), "w") as fh:
+        json.dump(out, fh, indent=1, default=float)
+    _write_profiles(rundir, grid, rho, f, cfg)
     return out
 
 

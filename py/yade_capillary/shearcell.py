@@ -242,12 +242,12 @@ class _Recorder:
     snapshot interval, the snapshots of the last `snapshots` intervals of a run of `steps` steps, and
     the progress. info["done_steps"] and info["next_snapshot"] carry a run over segments."""
 
-    def __init__(self, info, outdir, steps, log):
+    def __init__(self, info, outdir, steps, log, reduce_dir=None):
         import time
 
         from yade import O
 
-        self.info, self.outdir, self.steps, self.log = info, outdir, steps, log
+        self.info, self.outdir, self.steps, self.log, self.reduce_dir = info, outdir, steps, log, reduce_dir
         cfg = info["cfg"]
         self.every = max(1, int(cfg["snapshot_dt_s"] / O.dt))
         self.snap_iters = snapshot_steps(cfg, O.dt)
@@ -293,7 +293,12 @@ class _Recorder:
         k = info["next_snapshot"]
         if k < len(self.snap_iters) and done >= self.snap_iters[k]:
             info["next_snapshot"] = k + 1
-            snapshot(os.path.join(self.outdir, "snap_%03d.npz" % (k + 1)), info)
+            path = os.path.join(self.outdir, "snap_%03d.npz" % (k + 1))
+            snapshot(path, info)
+            if self.reduce_dir is not None:  # its CG fields, kept where the next segment finds them
+                from . import cellanalysis
+
+                cellanalysis.reduce_snapshot(path, info["cfg"], os.path.join(self.reduce_dir, "cg_%03d.npz" % (k + 1)))
             self.log("  t = %.3f s, snapshot %d, torque rotating %.3e N m, static %.3e N m" % (_now(info), k + 1, rot, sta))
 
 
@@ -322,8 +327,10 @@ def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.
     `case`, as run(..., case=...)); run until the configuration's run_s is done or `budget_s` of wall
     time has passed (or step `until_step` of the run is reached), saving keep/state.npz every
     `save_every_s` and at the end. Torques are appended to keep/torque.csv; snapshots go to outdir as
-    in run(); when the run is complete, outdir gets run.json and a copy of torque.csv. keep: the
-    directory of what the next segment continues from (default outdir).
+    in run(), each one also reduced to its CG fields in keep/cg_NNN.npz (cellanalysis.reduce_snapshot;
+    cellanalysis.analyse_reduced(keep) then fits the run when its snapshots were taken in several
+    sessions); when the run is complete, outdir and keep get run.json and outdir a copy of torque.csv.
+    keep: the directory of what the next segment continues from (default outdir).
     Returns {"complete": bool, "done_steps", "steps", "t_s", "particle_steps_per_s"} of this segment."""
     import time
 
@@ -336,7 +343,7 @@ def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.
     continued = os.path.exists(state)
     info = load_state(state if continued else state_in, case=None if continued else case)
     steps = int(info["cfg"]["run_s"] / O.dt)
-    rec = _Recorder(info, outdir, steps, log)
+    rec = _Recorder(info, outdir, steps, log, reduce_dir=keep)
     O.engines = O.engines + [rec.engine(first=True)]
     torque_csv = os.path.join(keep, "torque.csv")
     if not continued and os.path.exists(torque_csv):
@@ -373,6 +380,7 @@ def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.
         T = np.loadtxt(torque_csv, delimiter=",", skiprows=1, ndmin=2)
         _finish(info, outdir, T, steps, info["wall_s"])
         if keep != outdir:
+            _finish(info, keep, T, steps, info["wall_s"])
             np.savetxt(os.path.join(outdir, "torque.csv"), T, delimiter=",", header=TORQUE_HEADER, comments="")
     return out
 

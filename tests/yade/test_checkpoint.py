@@ -12,7 +12,7 @@
 #   test_save_continue); 1e-12 leaves room for that round-off only.
 # Then run_segment on a copy of the state with a run of 3 snapshot intervals: a first segment stopped
 # by its wall-time budget, a second one that completes it; the torque records must follow each other
-# in time without a gap or a repeat, and every snapshot and run.json must exist. Bad input: formBridge
+# in time without a gap or a repeat, and every snapshot, its reduced CG fields and run.json must exist. Bad input: formBridge
 # on a pair without interaction and twice on one bridge raise ValueError naming the pair.
 import json
 import os
@@ -96,6 +96,7 @@ dt = np.diff(T[:, 0])
 ck.true(len(T) > 10 and dt.min() > 0 and dt.max() < 1.5 * np.median(dt),
         "torque records follow each other across the segments (%d rows, steps %.3g-%.3g s)" % (len(T), dt.min(), dt.max()))
 ck.close(float(T[0, 0]), meta["time_s"], 0, "first torque record [s]", "the time of the saved state", atol=2 * np.median(dt))
-ck.true(all(os.path.exists(os.path.join(outdir, "snap_%03d.npz" % k)) for k in (1, 2, 3)) and os.path.exists(os.path.join(outdir, "run.json")) and os.path.exists(os.path.join(outdir, "torque.csv")),
-        "snapshots 1-3, run.json and torque.csv written")
+ck.true(all(os.path.exists(os.path.join(outdir, "snap_%03d.npz" % k)) and os.path.exists(os.path.join(keep, "cg_%03d.npz" % k)) for k in (1, 2, 3))
+        and all(os.path.exists(os.path.join(d, "run.json")) for d in (outdir, keep)) and os.path.exists(os.path.join(outdir, "torque.csv")),
+        "snapshots 1-3 and their reductions, run.json and torque.csv written")
 ck.finish()
