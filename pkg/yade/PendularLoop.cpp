@@ -215,6 +215,19 @@ void PendularLoop::action()
 #else
 	const int threads = 1;
 #endif
+	// The records belong to one scene, and only to the steps where nothing else reads the objects.
+	// Handed back before the gathering: what the objects get from the records is completed from the
+	// bodies as the records' last step saw them (store).
+	const bool recording = recordsAllowed(r);
+	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true);
+	recordScene = scene;
+	loopThread  = std::this_thread::get_id();
+	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
+		const auto ts = Clock::now();
+		sortInteractions();
+		sortTime += ns(ts, Clock::now());
+	}
+	sortPending = false;
 	gather(threads);
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
@@ -233,17 +246,6 @@ void PendularLoop::action()
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
 	long             fused = 0, dispatchedCount = 0, apart = 0, recorded = 0, bounded = 0;
-	// The records belong to one scene, and only to the steps where nothing else reads the objects.
-	const bool recording = recordsAllowed(r);
-	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true);
-	recordScene = scene;
-	loopThread  = std::this_thread::get_id();
-	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
-		const auto ts = Clock::now();
-		sortInteractions();
-		sortTime += ns(ts, Clock::now());
-	}
-	sortPending = false;
 	slots.resize(size);
 	toRecord.resize(threads);
 	toForget.resize(threads);
@@ -326,7 +328,7 @@ void PendularLoop::action()
 							return;
 						}
 						// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-						store(rec);
+						store(rec, *I);
 						toForget[threadNum()].push_back(slot.record);
 						slot.record = Slot::none;
 					} else if (skipApart && slot.potential()) {
@@ -423,53 +425,84 @@ bool PendularLoop::recordable(const Interaction& I, const Resolved& r) const
 	return !phys.film && !phys.viscous && phys.kn > 0;
 }
 
-void PendularLoop::load(Record& rec, const shared_ptr<Interaction>& I) const
+void PendularLoop::load(Record& rec, const shared_ptr<Interaction>& I)
 {
-	const auto& geom           = static_cast<const ScGeom&>(*I->geom);
-	const auto& phys           = static_cast<const PendularPhys&>(*I->phys);
-	rec.normal                 = geom.normal;
-	rec.contactPoint           = geom.contactPoint;
-	rec.shearInc               = geom.shearInc;
-	rec.penetrationDepth       = geom.penetrationDepth;
-	rec.radius1                = geom.radius1;
-	rec.radius2                = geom.radius2;
-	rec.normalForce            = phys.normalForce;
-	rec.shearForce             = phys.shearForce;
-	rec.Fcap                   = phys.Fcap;
-	rec.kn                     = phys.kn;
-	rec.cn                     = phys.cn;
-	rec.ks                     = phys.ks;
-	rec.cs                     = phys.cs;
-	rec.tangensOfFrictionAngle = phys.tangensOfFrictionAngle;
-	rec.Vb                     = phys.Vb;
-	rec.bridge                 = phys.bridge;
-	rec.wet                    = phys.wet;
-	rec.active                 = phys.active;
-	rec.forceInContact         = phys.forceInContact;
-	rec.isActive               = I->isActive;
-	rec.id1                    = I->getId1();
-	rec.id2                    = I->getId2();
-	rec.interaction            = I;
+	const auto& geom     = static_cast<const ScGeom&>(*I->geom);
+	const auto& phys     = static_cast<const PendularPhys&>(*I->phys);
+	rec.id1              = I->getId1();
+	rec.id2              = I->getId2();
+	rec.invariants       = invariantsOf(phys);
+	rec.active           = phys.active;
+	rec.isActive         = I->isActive;
+	rec.normal           = geom.normal;
+	rec.shearInc         = geom.shearInc;
+	rec.penetrationDepth = geom.penetrationDepth;
+	rec.normalForce      = phys.normalForce;
+	rec.shearForce       = phys.shearForce;
+	rec.Fcap             = phys.Fcap;
 }
 
-// What a step changes: the geometry, the forces and whether the bridge exists.
-void PendularLoop::store(const Record& rec) const
+// The entry of `invariants` for the bridge and contact parameters of `phys`. PendularPhys makes its
+// bridge from its own members (Ip2, and again when loaded), so physics with the same members, bit for
+// bit, have the same bridge: they share an entry (the bridge is checked as well, cheaply).
+int PendularLoop::invariantsOf(const PendularPhys& phys)
 {
-	Interaction& I = *rec.interaction;
+	const Real reals[] = { phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.R1, phys.R2, phys.gamma, phys.theta1, phys.theta2,
+		               phys.linearFmax, phys.linearKc, phys.bridge.rupture, phys.bridge.force0, phys.bridge.force_rupture };
+	const int  ints[]  = { phys.modelIndex, phys.ruptureIndex, phys.calibrateIndex, int(phys.bridge.m.index()), phys.extrapolate, phys.wet, phys.forceInContact };
+	std::string key(reinterpret_cast<const char*>(reals), sizeof(reals));
+	key.append(reinterpret_cast<const char*>(ints), sizeof(ints));
+	const auto found = invariantsIndex.find(key);
+	if (found != invariantsIndex.end()) return found->second;
+	invariants.push_back(Invariants { phys.bridge, phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.wet, phys.forceInContact });
+	return invariantsIndex[key] = int(invariants.size()) - 1;
+}
+
+// What a step changes: the geometry, the forces and whether the bridge exists. The contact point and
+// the radii, which the record does not keep, follow from the bodies as gathered for the record's last
+// step (the particles, not gathered again before the objects are brought up to date), by the
+// arithmetic of sphereGeometry.
+void PendularLoop::store(const Record& rec, const Interaction& I) const
+{
 	if (!I.geom || !I.phys) return; // reset by the law in this step
 	auto& geom            = static_cast<ScGeom&>(*I.geom);
 	auto& phys            = static_cast<PendularPhys&>(*I.phys);
 	geom.normal           = rec.normal;
-	geom.contactPoint     = rec.contactPoint;
 	geom.shearInc         = rec.shearInc;
 	geom.penetrationDepth = rec.penetrationDepth;
-	geom.radius1          = rec.radius1;
-	geom.radius2          = rec.radius2;
-	phys.normalForce      = rec.normalForce;
-	phys.shearForce       = rec.shearForce;
-	phys.Fcap             = rec.Fcap;
-	phys.active           = rec.active;
+	if (size_t(math::max(rec.id1, rec.id2)) < particles.size()) {
+		const Particle& p1 = particles[rec.id1];
+		geom.contactPoint  = p1.pos + (p1.radius - 0.5 * rec.penetrationDepth) * rec.normal;
+		geom.radius1       = p1.radius;
+		geom.radius2       = particles[rec.id2].radius;
+	}
+	phys.normalForce = rec.normalForce;
+	phys.shearForce  = rec.shearForce;
+	phys.Fcap        = rec.Fcap;
+	phys.active      = rec.active;
 }
+
+namespace {
+	// A record seen as the ScGeom and PendularPhys that sphereGeometry and the law read and write: the
+	// members of the record by reference, those it does not keep as values of this step, the
+	// invariants shared.
+	struct RecordGeom {
+		Vector3r& normal;
+		Vector3r& shearInc;
+		Real&     penetrationDepth;
+		Vector3r  contactPoint;
+		Real      radius1, radius2;
+	};
+	struct RecordPhys {
+		Vector3r&                normalForce;
+		Vector3r&                shearForce;
+		Real&                    Fcap;
+		bool&                    active;
+		const capillary::Bridge& bridge;
+		const Real &             kn, &cn, &ks, &cs, &tangensOfFrictionAngle, &Vb;
+		const bool &             wet, &forceInContact;
+	};
+} // namespace
 
 bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
 {
@@ -478,9 +511,13 @@ bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
 	Vector3r        normal = p2.pos - p1.pos;
 	const Real      norm   = normal.norm();
 	normal /= norm;
-	const Vector3r zero     = Vector3r::Zero();
-	const Rotation rotation = sphereGeometry(rec, p1, p2, normal, p1.radius + p2.radius - norm, zero, zero, false, r);
-	return applyLaw(rec.id1, rec.id2, rec.isActive, rec, rec, r, zero, zero, rotation, thread);
+	const Vector3r    zero = Vector3r::Zero();
+	const Invariants& inv  = invariants[rec.invariants];
+	RecordGeom        geom { rec.normal, rec.shearInc, rec.penetrationDepth, zero, 0, 0 };
+	RecordPhys        phys { rec.normalForce, rec.shearForce, rec.Fcap, rec.active, inv.bridge, inv.kn, inv.cn, inv.ks, inv.cs, inv.tangensOfFrictionAngle,
+                      inv.Vb, inv.wet, inv.forceInContact };
+	const Rotation    rotation = sphereGeometry(geom, p1, p2, normal, p1.radius + p2.radius - norm, zero, zero, false, r);
+	return applyLaw(rec.id1, rec.id2, rec.isActive, geom, phys, r, zero, zero, rotation, thread);
 }
 
 // After the pass, in one thread: frees the records of the interactions reset or handed back to the
@@ -489,9 +526,8 @@ void PendularLoop::settleRecords()
 {
 	for (auto& list : toForget) {
 		for (const int index : list) {
-			Record& rec = records[index];
-			recordOf.erase(rec.interaction.get());
-			rec.interaction.reset();
+			recordOf.erase(recordInteractions[index].get());
+			recordInteractions[index].reset();
 			freeRecords.push_back(index);
 		}
 		list.clear();
@@ -503,11 +539,13 @@ void PendularLoop::settleRecords()
 			if (freeRecords.empty()) {
 				index = int(records.size());
 				records.emplace_back();
+				recordInteractions.emplace_back();
 			} else {
 				index = freeRecords.back();
 				freeRecords.pop_back();
 			}
 			load(records[index], interactions[i]);
+			recordInteractions[index] = interactions[i];
 			slots[i].record                    = index;
 			recordOf[interactions[i].get()] = index;
 		}
@@ -555,14 +593,17 @@ void PendularLoop::sortInteractions()
 	slots.swap(sortedSlots);
 	++nSorts;
 	if (records.empty()) return;
-	std::vector<Record> ordered;
+	std::vector<Record>                  ordered;
+	std::vector<shared_ptr<Interaction>> orderedInteractions;
 	ordered.reserve(records.capacity()); // room for the next steps' new records without moving them all again
+	orderedInteractions.reserve(records.capacity());
 	std::vector<bool> placed(records.size(), false);
 	for (size_t k = 0; k < n; ++k) {
 		Slot& slot = slots[k];
 		if (!slot.recorded()) continue;
 		placed[slot.record] = true;
-		ordered.push_back(std::move(records[slot.record]));
+		ordered.push_back(records[slot.record]);
+		orderedInteractions.push_back(std::move(recordInteractions[slot.record]));
 		slot.record = int(ordered.size()) - 1;
 	}
 	// A record whose interaction is no longer in the container (none should be: the collider erases
@@ -572,12 +613,13 @@ void PendularLoop::sortInteractions()
 			++it;
 			continue;
 		}
-		store(records[it->second]);
+		store(records[it->second], *recordInteractions[it->second]);
 		it = recordOf.erase(it);
 	}
 	for (size_t k = 0; k < ordered.size(); ++k) // the map's nodes stay, their values change
-		recordOf.find(ordered[k].interaction.get())->second = int(k);
+		recordOf.find(orderedInteractions[k].get())->second = int(k);
 	records.swap(ordered);
+	recordInteractions.swap(orderedInteractions);
 	freeRecords.clear();
 }
 
@@ -585,10 +627,13 @@ void PendularLoop::syncObjects(bool drop)
 {
 	if (stale)
 		for (const auto& entry : recordOf)
-			store(records[entry.second]);
+			store(records[entry.second], *recordInteractions[entry.second]);
 	stale = false;
 	if (!drop) return;
 	records.clear();
+	recordInteractions.clear();
+	invariants.clear();
+	invariantsIndex.clear();
 	freeRecords.clear();
 	recordOf.clear();
 	for (auto& slot : slots)
@@ -618,7 +663,8 @@ boost::python::dict PendularLoop::memory() const
 	d["particle"]      = sizeof(Particle);
 	d["near"]          = sizeof(Near);
 	d["slot"]          = sizeof(Slot);
-	d["record"]        = sizeof(Record);
+	d["record"]        = sizeof(Record) + sizeof(shared_ptr<Interaction>); // with its entry of recordInteractions
+	d["invariants"]    = sizeof(Invariants); // once per distinct set of bridge and contact parameters
 	d["forces"]        = 2 * sizeof(Vector3r);
 	return d;
 }

@@ -27,25 +27,30 @@ public:
 	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
 
 	// A sphere-sphere interaction with a fixed-volume inviscid bridge (or none), between two steps:
-	// the members of ScGeom and PendularPhys that the law reads and writes, under their names, in one
-	// contiguous array, so that a step reads and writes 5 cache lines per interaction instead of the
-	// Interaction, ScGeom and PendularPhys objects (about 12, scattered over the heap). The objects are
-	// brought up to date whenever something may read them (syncScene).
-	struct alignas(64) Record { // on cache-line boundaries: the first three lines change in a step (but the ids), the last three are read only
+	// what a step changes of ScGeom and PendularPhys, under their names, in two cache lines, so that a
+	// step reads and writes those two lines per interaction instead of the Interaction, ScGeom and
+	// PendularPhys objects (about 12, scattered over the heap). What a step does not change (the
+	// bridge's invariants and the contact parameters) is shared by every record with the same ones
+	// (Invariants, one entry for all the bridges of a monodisperse material); what follows from the
+	// record and the bodies (the contact point, the radii) is written only into the objects. The
+	// objects are brought up to date whenever something may read them (syncScene).
+	struct alignas(64) Record {
 		Body::id_t id1, id2; // first: what the pass reads first
+		int        invariants; // index in invariants
+		bool       active;     // PendularPhys
+		bool       isActive;   // Interaction::isActive
 		// ScGeom
-		Vector3r normal, contactPoint, shearInc;
-		Real     penetrationDepth, radius1, radius2;
+		Vector3r normal, shearInc;
+		Real     penetrationDepth;
 		// PendularPhys
 		Vector3r normalForce, shearForce;
 		Real     Fcap;
-		bool     active;
-		// read only
-		alignas(64) capillary::Bridge bridge;
-		Real                          kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
-		bool                          wet, forceInContact;
-		bool                          isActive; // Interaction::isActive
-		shared_ptr<Interaction>       interaction; // kept alive while recorded; read only when loaded, stored or reset
+	};
+	// The members of PendularPhys that a step of a record reads and does not change.
+	struct Invariants {
+		capillary::Bridge bridge;
+		Real              kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
+		bool              wet, forceInContact;
 	};
 
 	void action() override;
@@ -94,8 +99,9 @@ private:
 	// One step of a recorded interaction; false: reset it.
 	bool recordStep(Record& rec, const Resolved& r, int thread);
 	bool recordable(const Interaction& I, const Resolved& r) const;
-	void load(Record& rec, const shared_ptr<Interaction>& I) const;
-	void store(const Record& rec) const;
+	void load(Record& rec, const shared_ptr<Interaction>& I);
+	int  invariantsOf(const PendularPhys& phys);
+	void store(const Record& rec, const Interaction& I) const;
 	void syncObjects(bool drop);
 	void settleRecords();
 	bool recordsAllowed(const Resolved& r) const;
@@ -139,9 +145,15 @@ private:
 	Real                               epochDisplacement = 0;
 	bool                               fullCheck         = true;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
-	// The records, their free entries, and which interaction has which (for an interaction that an
-	// erasure moved to another entry of the container). Changed only between the passes.
+	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
+	// reset), their free entries, and which interaction has which (for an interaction that an erasure
+	// moved to another entry of the container). Changed only between the passes.
 	std::vector<Record>                            records;
+	std::vector<shared_ptr<Interaction>>           recordInteractions;
+	// The distinct invariants of the records, and where each is, by the PendularPhys members they
+	// are made from (see invariantsOf).
+	std::vector<Invariants>                        invariants;
+	std::unordered_map<std::string, int>           invariantsIndex;
 	std::vector<int>                               freeRecords;
 	std::unordered_map<const Interaction*, int>    recordOf;
 	std::vector<std::vector<long>>                 toRecord;   // per thread: container entries to record after the pass
@@ -184,7 +196,7 @@ public:
 		.staticmethod("sync")
 		.def("readersGuarded", &PendularLoop::guardReaders, "Declare that the Python paths that read or change interactions call sync (yade_capillary.objects.guard does it); before, no records are kept.")
 		.staticmethod("readersGuarded")
-		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
+		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; invariants: once per distinct set of bridge and contact parameters) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
 	);
 	// clang-format on
 };
