@@ -4,12 +4,14 @@
 #   CASE: dry | wet13.6nl | wet74.2nl, or Gladkyy's other models at 13.6 nl: wet13.6nl_weigert |
 #   wet13.6nl_willett_reduced | wet13.6nl_rabinovich_lambert   CONFIG: validation_2s (default) | validation_4s, validation_5s
 #   (continue validation_2s to 4 or 5 s of rotation) | validation_10s (continue validation_5s to 10 s) | validation (5 s from the prepared cell)
+#   | validation_g22 (5 s of the validation cell under 2.2 g, prepared on its own)
 #   PREPARATION: dry (default: the dry cell given the liquid at the first step) | wet (a cell filled
 #   and settled with the liquid of CASE; results in results/shear_cell/CONFIG_wetprep/CASE)
 #   CASE = report: compare the analysed cases of CONFIG with Gladkyy 2014 (report.md, report.csv)
 # Cases may run in parallel once the dry cell exists (run dry first, or prepare alone with CASE = prepare).
 # Writes results/shear_cell/CONFIG/CASE/{torque.csv, snap_*.npz, run.json, fits.json, profiles.csv, ...,
-# final.yade.gz}; the prepared cell is results/shear_cell/validation/dry/prepared.yade.gz.
+# final.yade.gz}; the prepared cell is results/shear_cell/validation/dry/prepared.yade.gz (for a configuration
+# that differs from validation in more than its run parameters: results/shear_cell/CONFIG/dry/prepared.yade.gz).
 import json
 import os
 import sys
@@ -35,10 +37,11 @@ if preparation == "wet":  # settled with its own liquid: bridges formed while th
     fit = cellanalysis.analyse(outdir)
     print(json.dumps({k: fit[k] for k in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "band_points")}, indent=1, default=float))
     sys.exit(0)
-prepared = os.path.join("results", "shear_cell", "validation", "dry", "prepared.yade.gz")
+cell = shearcell.preparation_of(config)
+prepared = os.path.join("results", "shear_cell", cell, "dry", "prepared.yade.gz")
 if not os.path.exists(prepared):
     os.makedirs(os.path.dirname(prepared), exist_ok=True)
-    shearcell.prepare("validation", "dry", prepared)
+    shearcell.prepare(cell, "dry", prepared)
 if case == "prepare":
     sys.exit(0)
 if config in shearcell.CONTINUES:  # from the final state of the earlier run of this case

@@ -49,12 +49,29 @@ GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["
 # The ci cell at Gladkyy's time step, about tc/100 (he needed about 1e6 steps for 5 s at tc = 5.4e-4 s):
 # the time-step experiment of the cause analysis, compared with the ci references (tc/20).
 CI_DT100 = dict(CI, dt_over_tc=0.01)
+# Gravity of every cell [m/s^2] unless its configuration sets g.
+GRAVITY = 9.81
+# The validation cell under 2.2 g (5 s of rotation as Gladkyy): the pressures of a cell 2.2 times
+# taller (the Gladkyy-size cell), p ~ rho g depth, with the particles, bridges and band geometry of
+# the validation cell; the pressure-range experiment of the cause analysis (c is a capillary stress,
+# independent of g; only the range of p over which tau(p) is fitted grows). Prepared on its own.
+VALIDATION_G22 = dict(VALIDATION, g=2.2 * GRAVITY)
 CONFIGS = {"validation": VALIDATION, "ci_dt100": CI_DT100, "gladkyy_size": GLADKYY_SIZE, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
-           "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "validation_10s": VALIDATION_10S, "ci": CI}
+           "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "validation_10s": VALIDATION_10S, "ci": CI,
+           "validation_g22": VALIDATION_G22}
 # Configurations that start from the final state of another one's run of the same case.
 CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s", "validation_10s": "validation_5s"}
 # Keys that only control the run; all others describe the cell, its materials and its preparation.
 RUN_KEYS = ("run_s", "snapshots", "snapshot_dt_s")
+
+
+def preparation_of(config):
+    """The configuration whose prepared cell `config` runs from: `validation` when they differ in
+    RUN_KEYS only (one packing for all the validation runs), else `config` itself."""
+    if config not in CONFIGS:
+        raise ValueError("config: %r is not one of %s" % (config, ", ".join(CONFIGS)))
+    cell = lambda c: {k: v for k, v in CONFIGS[c].items() if k not in RUN_KEYS}
+    return "validation" if cell(config) == cell("validation") else config
 
 # Liquid cases: Gladkyy's volumes (W11 and W13 of Table 1), gamma of that table.
 CASES = {
@@ -145,7 +162,7 @@ def prepare(config, case, path, seed=None, log=print):
     # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H; see build).
     ids = build(cfg, case)
     flowing = ids["flowing"]
-    O.engines = engines(gravity=(0, 0, -9.81), damping=0.3)
+    O.engines = engines(gravity=(0, 0, -cfg.get("g", GRAVITY)), damping=0.3)
     O.dt = cfg["dt_over_tc"] * cfg["tc"]
     steps = int(cfg["settle_s"] / O.dt)
     log("prepare %s/%s: %d flowing + %d wall spheres, settling %d steps" % (config, case, len(flowing), len(ids["static"]) + len(ids["rotating"]), steps))
@@ -163,7 +180,7 @@ def run_engines(info, loop="fused"):
 
     from .scene import engines
 
-    eng = engines(gravity=(0, 0, -9.81), damping=0.0, loop=loop)
+    eng = engines(gravity=(0, 0, -info["cfg"].get("g", GRAVITY)), damping=0.0, loop=loop)
     eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / info["cfg"]["period"],
                                   rotateAroundZero=True, zeroPoint=(0, 0, 0)))
     return eng

@@ -45,4 +45,15 @@ ck.true(prepared["cfg"]["run_s"] == shearcell.CONFIGS["validation_2s"]["run_s"] 
         "validation_2s run parameters taken")
 ck.raises(ValueError, lambda: shearcell._set_config(prepared, "ci"), ["config", "Ro", "period"], "another cell is refused")
 ck.raises(ValueError, lambda: shearcell._set_config(prepared, "huge"), ["config", "huge"], "unknown configuration")
+
+# Another gravity is another cell: validation_g22 is prepared on its own and runs under its g.
+ck.true(shearcell.preparation_of("validation_5s") == "validation" and shearcell.preparation_of("validation_g22") == "validation_g22",
+        "validation_5s shares the validation packing, validation_g22 does not")
+ck.raises(ValueError, lambda: shearcell._set_config(prepared, "validation_g22"), ["config", "in g"], "a cell prepared under 1 g refuses 2.2 g")
+ck.raises(ValueError, lambda: shearcell.preparation_of("validation_g3"), ["config", "validation_g3"], "unknown configuration")
+g22 = {"case": "dry", "config": "validation_g22", "cfg": dict(shearcell.CONFIGS["validation_g22"]), "rotating": [0]}
+newton = [e for e in shearcell.run_engines(g22) if type(e).__name__ == "NewtonIntegrator"]
+ck.close(newton[0].gravity[2], -2.2 * 9.81, 1e-12, "NewtonIntegrator's gravity under validation_g22", "VALIDATION_G22: 2.2 g")
+newton = [e for e in shearcell.run_engines(dict(prepared, rotating=[0])) if type(e).__name__ == "NewtonIntegrator"]
+ck.close(newton[0].gravity[2], -9.81, 1e-12, "NewtonIntegrator's gravity of the validation cell", "shearcell.GRAVITY")
 ck.finish()
