@@ -5,7 +5,7 @@
 # Run:  build/yade-capillary -j2 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]
 #   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
 #   STOP: window (default: stop before the first snapshot of the averaging window) | end
-# Writes data/shear_cell_runs/gladkyy_size/prepared.npz, and per case
+# Writes data/shear_cell_runs/gladkyy_size/prepared.npz (settling.npz while it settles), and per case
 # data/shear_cell_runs/gladkyy_size/CASE/{state.npz, torque.csv, cg_NNN.npz} (what the next segment continues
 # from, and the CG fields of each snapshot; run.json and fits.json from cellanalysis.analyse_reduced when
 # the run is complete) and results/shear_cell/gladkyy_size/CASE/ (the snapshots themselves).
@@ -28,8 +28,13 @@ root = os.path.join("data", "shear_cell_runs", "gladkyy_size")
 prepared = os.path.join(root, "prepared.npz")
 if case == "prepare":
     os.makedirs(root, exist_ok=True)
-    info = shearcell.prepare("gladkyy_size", "dry", os.path.join("results", "shear_cell", "gladkyy_size", "prepared.yade.gz"))
+    # No O.save: its gzip archive of 2e5 bodies takes longer than the settling's last hour. The settling
+    # itself is saved every 20 min to settling.npz (commit it when a session ends before the cell is settled).
+    settling = os.path.join(root, "settling.npz")
+    info = shearcell.prepare("gladkyy_size", "dry", None, checkpoint=settling)
     shearcell.save_state(prepared, info)
+    if os.path.exists(settling):
+        os.remove(settling)
     print("prepared: %d flowing spheres, %s (%.1f MB)" % (len(info["flowing"]), prepared, os.path.getsize(prepared) / 1e6))
     sys.exit(0)
 until = shearcell.snapshot_steps(shearcell.CONFIGS["gladkyy_size"], shearcell.CONFIGS["gladkyy_size"]["dt_over_tc"] * shearcell.CONFIGS["gladkyy_size"]["tc"])[0] if stop == "window" else None

@@ -150,26 +150,49 @@ def build(cfg, case, spacing=2.2, fill=None):
     return ids
 
 
-def prepare(config, case, path, seed=None, log=print):
-    """Build the cell, fill it to about H, settle under gravity, O.save to path; returns info dict.
+def prepare(config, case, path, seed=None, log=print, checkpoint=None, save_every_s=1200.0):
+    """Build the cell, fill it to about H, settle under gravity, O.save to path (None: no O.save);
+    returns info dict.
 
-    seed: overrides the configuration's seed of the random filling (for seed-to-seed scatter)."""
+    seed: overrides the configuration's seed of the random filling (for seed-to-seed scatter).
+    checkpoint: a save_state file written every `save_every_s` of wall time while the cell settles; if it
+    exists, settling continues from it (a Gladkyy-size cell settles for about 90 minutes on one core)."""
+    import time
+
     from yade import O
 
     from .scene import engines
 
     cfg = dict(CONFIGS[config], **({} if seed is None else {"seed": seed}))
-    # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H; see build).
-    ids = build(cfg, case)
-    flowing = ids["flowing"]
-    O.engines = engines(gravity=(0, 0, -cfg.get("g", GRAVITY)), damping=0.3)
-    O.dt = cfg["dt_over_tc"] * cfg["tc"]
-    steps = int(cfg["settle_s"] / O.dt)
-    log("prepare %s/%s: %d flowing + %d wall spheres, settling %d steps" % (config, case, len(flowing), len(ids["static"]) + len(ids["rotating"]), steps))
-    O.run(steps, True)
-    info = {"config": config, "case": case, "flowing": flowing, "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg}
-    O.tags["shearcell"] = json.dumps(info)
-    O.save(path)
+    settling = engines(gravity=(0, 0, -cfg.get("g", GRAVITY)), damping=0.3)
+    steps = int(cfg["settle_s"] / (cfg["dt_over_tc"] * cfg["tc"]))
+    if checkpoint is not None and os.path.exists(checkpoint):
+        info = load_state(checkpoint)
+        if (info["config"], info["case"], info["cfg"]) != (config, case, cfg):
+            raise ValueError("checkpoint: %s holds %s/%s, not the asked %s/%s" % (checkpoint, info["config"], info["case"], config, case))
+        O.engines = settling
+        log("prepare %s/%s: continuing %s at step %d of %d" % (config, case, checkpoint, info["settled_steps"], steps))
+    else:
+        # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H; see build).
+        ids = build(cfg, case)
+        O.engines = settling
+        O.dt = cfg["dt_over_tc"] * cfg["tc"]
+        info = {"config": config, "case": case, "flowing": ids["flowing"], "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg,
+                "settled_steps": 0}
+        log("prepare %s/%s: %d flowing + %d wall spheres, settling %d steps" % (config, case, len(ids["flowing"]), len(ids["static"]) + len(ids["rotating"]), steps))
+    last, chunk = time.time(), 500
+    while info["settled_steps"] < steps:
+        n = min(chunk, steps - info["settled_steps"])
+        O.run(n, True)
+        info["settled_steps"] += n
+        if checkpoint is not None and time.time() - last > save_every_s and info["settled_steps"] < steps:
+            save_state(checkpoint, info)
+            last = time.time()
+            log("  saved %s at step %d of %d" % (checkpoint, info["settled_steps"], steps))
+    info.pop("settled_steps")
+    if path is not None:
+        O.tags["shearcell"] = json.dumps({k: v for k, v in info.items() if k in ("config", "case", "flowing", "static", "rotating", "cfg")})
+        O.save(path)
     return info
 
 

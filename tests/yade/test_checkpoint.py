@@ -14,6 +14,11 @@
 # by its wall-time budget, a second one that completes it; the torque records must follow each other
 # in time without a gap or a repeat, and every snapshot, its reduced CG fields and run.json must exist. Bad input: formBridge
 # on a pair without interaction and twice on one bridge raise ValueError naming the pair.
+# Settling with a checkpoint (prepare(..., checkpoint=...), how the Gladkyy-size cell settles across
+# sessions): a short settling (0.03 s, 1111 steps, the bottom layer reaches the floor) saved after
+# every 500-step chunk, then continued from its last checkpoint (step 1000): the positions and
+# velocities at the end within 1e-12 R and 1e-12 of the largest speed of the uninterrupted settling
+# (round-off, as above); a checkpoint of another case raises ValueError naming the file.
 import json
 import os
 import tempfile
@@ -99,4 +104,22 @@ ck.close(float(T[0, 0]), meta["time_s"], 0, "first torque record [s]", "the time
 ck.true(all(os.path.exists(os.path.join(outdir, "snap_%03d.npz" % k)) and os.path.exists(os.path.join(keep, "cg_%03d.npz" % k)) for k in (1, 2, 3))
         and all(os.path.exists(os.path.join(d, "run.json")) for d in (outdir, keep)) and os.path.exists(os.path.join(outdir, "torque.csv")),
         "snapshots 1-3 and their reductions, run.json and torque.csv written")
+
+shearcell.CONFIGS["ci_settle"] = dict(shearcell.CI, settle_s=0.03)
+settling = os.path.join(work, "settling.npz")
+shearcell.prepare("ci_settle", "dry", None, seed=1, checkpoint=settling, save_every_s=0.0, log=lambda *a: None)
+XA = np.array([b.state.pos for b in O.bodies])
+VA = np.array([b.state.vel for b in O.bodies])
+contacts = sum(1 for I in O.interactions if I.isReal)
+resumed = []
+shearcell.prepare("ci_settle", "dry", None, seed=1, checkpoint=settling, log=resumed.append)
+ck.true(contacts > 0 and resumed and "at step 1000 of 1111" in resumed[0], "settling continued from its checkpoint (%s; %d contacts)" % (resumed, contacts))
+XB = np.array([b.state.pos for b in O.bodies])
+VB = np.array([b.state.vel for b in O.bodies])
+ck.close(float(np.abs(XB - XA).max()), 0.0, 0, "largest position difference, continued settling [m]", "the uninterrupted settling",
+         atol=1e-12 * info["cfg"]["R"])
+ck.close(float(np.abs(VB - VA).max()), 0.0, 0, "largest velocity difference, continued settling [m/s]", "the uninterrupted settling",
+         atol=1e-12 * np.abs(VA).max())
+ck.raises(ValueError, lambda: shearcell.prepare("ci_settle", "wet13.6nl", None, seed=1, checkpoint=settling), ["checkpoint", settling, "ci_settle/dry"],
+          "a checkpoint of another case")
 ck.finish()
