@@ -274,6 +274,87 @@ def fit_variants(sigma, gdot, away, gamma_dot_min):
     return out
 
 
+def block_fits(rundir, blocks=3, keep=None):
+    """The scatter of a run's fit over time: its snapshots split into `blocks` consecutive blocks, each
+    fitted on its own (analyse_reduced of the block's reduced snapshots; each snapshot of rundir is
+    reduced once to keep/cg_NNN.npz, keep defaulting to rundir). The fit's own standard errors treat
+    the band's grid nodes as independent, which neighbouring nodes (R/2 apart, kernel width R) and
+    one snapshot set are not; the spread of the blocks is the error of a time average over the
+    blocks' length. Returns {blocks: [fit summary per block], and for mu, c_Pa, Rc_mean_m and W_mean_m:
+    the mean of the blocks and its standard error (block std / sqrt(blocks))}."""
+    import shutil
+    import tempfile
+
+    keep = rundir if keep is None else keep
+    os.makedirs(keep, exist_ok=True)
+    with open(os.path.join(rundir, "run.json")) as f:
+        cfg = json.load(f)["cfg"]
+    snaps = sorted(glob.glob(os.path.join(rundir, "snap_*.npz")))
+    reduced = sorted(glob.glob(os.path.join(keep, "cg_*.npz")))
+    if snaps:
+        for k, snap in enumerate(snaps):
+            out = os.path.join(keep, "cg_%03d.npz" % (k + 1))
+            if not os.path.exists(out):
+                reduce_snapshot(snap, cfg, out)
+        reduced = sorted(glob.glob(os.path.join(keep, "cg_*.npz")))
+    if not 2 <= blocks <= len(reduced):
+        raise ValueError("blocks: %r is outside [2, %d] (the run's %d snapshots)" % (blocks, len(reduced), len(reduced)))
+    out = {"blocks": []}
+    for part in np.array_split(np.arange(len(reduced)), blocks):
+        d = tempfile.mkdtemp(prefix="block_")
+        try:
+            shutil.copy(os.path.join(rundir, "run.json"), d)
+            for i in part:
+                os.symlink(os.path.abspath(reduced[i]), os.path.join(d, os.path.basename(reduced[i])))
+            f = analyse_reduced(d)
+        finally:
+            shutil.rmtree(d)
+        out["blocks"].append({"snapshots": [int(i) + 1 for i in part], "mu": f["mu"], "c_Pa": f["c_Pa"],
+                              "Rc_mean_m": float(np.mean(f["Rc_m"])), "W_mean_m": float(np.mean(f["W_m"])), "fit_variants": f["fit_variants"]})
+    for k in ("mu", "c_Pa", "Rc_mean_m", "W_mean_m"):
+        v = np.array([b[k] for b in out["blocks"]])
+        out[k], out[k + "_err"] = float(v.mean()), float(v.std(ddof=1) / np.sqrt(len(v)))
+    return out
+
+
+def band_profile(profiles_csv):
+    """The shear band of a run by height, from its profiles.csv (written by analyse): {z_m, p_Pa, tau_Pa,
+    points}, the means over the band's nodes at each height that has at least 2 of them."""
+    d = np.genfromtxt(profiles_csv, delimiter=",", names=True)
+    b = d[d["in_band"] > 0]
+    zs = [z for z in np.unique(b["z_m"]) if (b["z_m"] == z).sum() >= 2]
+    rows = [b[b["z_m"] == z] for z in zs]
+    return {"z_m": np.array(zs), "p_Pa": np.array([r["p_Pa"].mean() for r in rows]), "tau_Pa": np.array([r["tau_Pa"].mean() for r in rows]),
+            "points": np.array([len(r) for r in rows])}
+
+
+def excess_shear(wet_csv, dry_csv, mu_fixed=0.13):
+    """The cohesion of a wet run measured against the dry material of the same cell, without extrapolating
+    to p = 0: at each height of the wet band, its shear stress minus the dry band's at the same pressure
+    (tau_dry(p) interpolated linearly between the dry band's heights; only wet heights within the dry
+    band's pressure range). Gladkyy 2014 §4.1 fits every liquid content with the dry slope (mu = 0.13
+    for dry and wet), so his c is this excess if his dry line has no intercept; `mu_fixed` gives the
+    intercept of the wet points with that slope as well. Returns {rows: [(z_m, p_Pa, tau_Pa,
+    tau_dry_Pa, excess_Pa)], excess_Pa (mean, weighted by band nodes), excess_low_Pa / excess_high_Pa
+    (the heights below / above the median pressure), c_fixed_mu_Pa, c_fixed_mu_err_Pa (mean of tau - mu_fixed
+    p over the wet band's heights and its standard error)}."""
+    w, d = band_profile(wet_csv), band_profile(dry_csv)
+    order = np.argsort(d["p_Pa"])
+    dp, dt = d["p_Pa"][order], d["tau_Pa"][order]
+    inside = (w["p_Pa"] >= dp[0]) & (w["p_Pa"] <= dp[-1])
+    if inside.sum() < 2:
+        raise ValueError("excess_shear: %d heights of %s lie within the dry band's pressures %.3g-%.3g Pa (at least 2 needed)"
+                         % (inside.sum(), wet_csv, dp[0], dp[-1]))
+    p, tau, n = w["p_Pa"][inside], w["tau_Pa"][inside], w["points"][inside]
+    tau_dry = np.interp(p, dp, dt)
+    excess = tau - tau_dry
+    low = p <= np.median(p)
+    fixed = w["tau_Pa"] - mu_fixed * w["p_Pa"]
+    return {"rows": list(zip(w["z_m"][inside], p, tau, tau_dry, excess)), "excess_Pa": float(np.average(excess, weights=n)),
+            "excess_low_Pa": float(np.average(excess[low], weights=n[low])), "excess_high_Pa": float(np.average(excess[~low], weights=n[~low])),
+            "c_fixed_mu_Pa": float(fixed.mean()), "c_fixed_mu_err_Pa": float(fixed.std(ddof=1) / np.sqrt(len(fixed))), "mu_fixed": mu_fixed}
+
+
 def cylinder_flux(data, r0, w, omega_at):
     """Torque through the cylinder r = r0 [N m], from the CG stress of the snapshots `data`:
     2 pi r0^2 times the integral of the symmetrised sigma_r_theta over z, at every height the

@@ -69,6 +69,19 @@ def test_reduced_snapshots_give_the_same_fits(rundir, tmp_path):
     assert os.path.getsize(red_dir / "profiles.csv") > 0
 
 
+def test_block_fits(rundir, tmp_path):
+    # Two blocks of one snapshot each of the steady synthetic band: each block recovers Rc (as the
+    # whole run does, within 2e-4 m), so the mean does and the standard error of the blocks is below
+    # that tolerance; the reduced snapshots go to `keep`. Three blocks of two snapshots: ValueError
+    # naming the parameter and the allowed range.
+    out = cellanalysis.block_fits(str(rundir), 2, keep=str(tmp_path / "keep"))
+    assert [b["snapshots"] for b in out["blocks"]] == [[1], [2]]
+    assert out["Rc_mean_m"] == pytest.approx(RC, abs=2e-4) and out["Rc_mean_m_err"] < 2e-4
+    assert sorted(os.listdir(tmp_path / "keep")) == ["cg_001.npz", "cg_002.npz"]
+    with pytest.raises(ValueError, match=r"blocks: 3 is outside \[2, 2\]"):
+        cellanalysis.block_fits(str(rundir), 3, keep=str(tmp_path / "keep"))
+
+
 def test_gap_classes(tmp_path):
     # Bins of 1 um centred at a = -1.5, -0.5, 0.5, 1.5, 2.5, 3.5 um (a_crit = 3.5 um) and one at 0
     # straddling a = 0 (centres need not be regular at 0 in this synthetic table; half a bin = the
@@ -107,3 +120,41 @@ def test_force_against_model(tmp_path):
     assert fm["bins"] == 9
     assert fm["median"] == pytest.approx(1.0, rel=1e-12)
     assert fm["weighted_mean"] == pytest.approx(10 / 9, rel=1e-12)
+
+
+def _profiles(path, z, p, tau, nodes=3):
+    """A profiles.csv whose band has `nodes` nodes at each height z with pressure p and shear stress tau
+    (and one node outside the band that must be ignored)."""
+    rows = []
+    for zi, pi, ti in zip(z, p, tau):
+        rows += [(0.05 + 1e-3 * k, zi, 100.0, 0.5, 0.2, pi, ti, 1.0) for k in range(nodes)]
+        rows.append((0.02, zi, 100.0, 0.0, 0.0, pi, 100.0, 0.0))
+    np.savetxt(path, np.array(rows), delimiter=",", header="r_m,z_m,rho_kg_m3,omega_over_Omega,gamma_dot_1_s,p_Pa,tau_Pa,in_band", comments="")
+    return str(path)
+
+
+def test_excess_shear_against_known_lines(tmp_path):
+    """Wet band tau = 0.13 p + 1.3 Pa (Gladkyy's 13.6 nl line), dry band tau = 0.137 p - 0.25 Pa (our dry
+    validation fit) at other heights and pressures: the excess at every wet height within the dry
+    pressures is the difference of the two lines there (the interpolation of a straight dry line is
+    exact), and the intercept with the slope 0.13 is 1.3 Pa."""
+    z = np.linspace(0.005, 0.035, 13)
+    p_dry = np.linspace(25.0, 1.0, 13)
+    dry = _profiles(tmp_path / "dry.csv", z, p_dry, 0.137 * p_dry - 0.25)
+    p_wet = np.linspace(30.0, 2.0, 13)  # the deepest three lie beyond the dry pressures
+    wet = _profiles(tmp_path / "wet.csv", z, p_wet, 0.13 * p_wet + 1.3)
+    e = cellanalysis.excess_shear(wet, dry)
+    p = np.array([r[1] for r in e["rows"]])
+    assert len(p) == 10 and p.max() <= 25.0
+    np.testing.assert_allclose([r[4] for r in e["rows"]], 1.3 + 0.25 - 0.007 * p, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(e["excess_Pa"], np.mean(1.55 - 0.007 * p), rtol=0, atol=1e-12)
+    assert e["excess_low_Pa"] > e["excess_high_Pa"]
+    assert abs(e["c_fixed_mu_Pa"] - 1.3) < 1e-12 and e["c_fixed_mu_err_Pa"] < 1e-12
+
+
+def test_excess_shear_needs_overlapping_pressures(tmp_path):
+    z = np.linspace(0.005, 0.035, 5)
+    dry = _profiles(tmp_path / "dry.csv", z, np.linspace(10.0, 1.0, 5), np.linspace(1.0, 0.1, 5))
+    wet = _profiles(tmp_path / "wet.csv", z, np.linspace(50.0, 20.0, 5), np.linspace(6.0, 3.0, 5))
+    with pytest.raises(ValueError, match="dry band's pressures"):
+        cellanalysis.excess_shear(wet, dry)
