@@ -1,8 +1,10 @@
 # The cohesion of wet shear-cell runs against the dry run of the same cell (cellanalysis.excess_shear):
 # at each height of the wet band, tau_wet - tau_dry at the same pressure, and the intercept of the wet
 # points with Gladkyy's slope mu = 0.13. Plain python3, from the runs' profiles.csv:
-#   PYTHONPATH=build/python /usr/bin/python3 scripts/shear_cell_excess.py DRY_DIR WET_DIR [WET_DIR ...]
-# Prints a table per wet run and writes WET_DIR/excess_shear.csv.
+#   PYTHONPATH=build/python /usr/bin/python3 scripts/shear_cell_excess.py DRY WET_DIR [WET_DIR ...]
+# DRY: the dry run's directory (its profiles.csv), or a directory with only fits.json: then the dry band is
+# its fitted line over the fitted pressures. Prints a table per wet run and writes WET_DIR/excess_shear.csv.
+import json
 import os
 import sys
 
@@ -13,6 +15,12 @@ from yade_capillary import cellanalysis
 if len(sys.argv) < 3:
     raise SystemExit("usage: shear_cell_excess.py DRY_DIR WET_DIR [WET_DIR ...]")
 dry = os.path.join(sys.argv[1], "profiles.csv")
+if not os.path.exists(dry):
+    with open(os.path.join(sys.argv[1], "fits.json")) as f:
+        fit = json.load(f)
+    base = fit["fit_variants"]["baseline"]
+    dry = (fit["mu"], fit["c_Pa"], base["p_min_Pa"], base["p_max_Pa"])
+    print("dry band: the line of %s/fits.json, tau = %.4f p + %.3f Pa over %.2f-%.2f Pa" % ((sys.argv[1],) + dry))
 for wet_dir in sys.argv[2:]:
     e = cellanalysis.excess_shear(os.path.join(wet_dir, "profiles.csv"), dry)
     np.savetxt(os.path.join(wet_dir, "excess_shear.csv"), np.array(e["rows"]), delimiter=",", comments="",

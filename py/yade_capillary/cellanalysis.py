@@ -33,6 +33,11 @@ CONVENTIONS = {
 }
 
 
+# Gladkyy 2014 §4.1: "tau = mu p + c ... with mu = 0.13 for the particular granular material", one slope
+# for the dry and the wet materials (his Fig. 7), c per liquid content.
+GLADKYY_MU = 0.13
+
+
 def analysis_grid(cfg):
     """The (r, z) grid of the analysis of a cell of configuration dict cfg: nodes R/2 apart, kernel width R."""
     R = cfg["R"]
@@ -240,7 +245,10 @@ def fit_variants(sigma, gdot, away, gamma_dot_min):
     threshold_half_rate: the same threshold on gamma_dot / 2 (a strain-rate norm half of ours, the
     other common convention); low_p / high_p: the baseline band split at its median pressure;
     quadratic: tau = c + mu p + k p^2 over the baseline band (mu: the slope at p = 0, k_1_Pa the
-    curvature), to test whether tau(p) is curved at low p."""
+    curvature), to test whether tau(p) is curved at low p; baseline_gladkyy_slope and
+    threshold_gladkyy_slope: c with the slope fixed at Gladkyy's mu = 0.13 (his §4.1 gives one mu for the
+    dry and every wet material and c per liquid content), the mean of tau - 0.13 p over that band;
+    every linear fit also gives p_mean_Pa, the band's mean pressure."""
     s = 0.5 * (sigma + np.swapaxes(sigma, 0, 1))
     p_tr, p_zz = (s[0, 0] + s[1, 1] + s[2, 2]) / 3, s[2, 2]
     tau_full, tau_rt = np.hypot(s[0, 1], s[2, 1]), np.abs(s[0, 1])
@@ -253,11 +261,18 @@ def fit_variants(sigma, gdot, away, gamma_dot_min):
         if m.sum() < 4:
             return {"error": "fewer than 4 band points", "points": int(m.sum())}
         try:
-            return dict(fits.fit_yield(pp[m], tt[m]), points=int(m.sum()), p_min_Pa=float(pp[m].min()), p_max_Pa=float(pp[m].max()))
+            return dict(fits.fit_yield(pp[m], tt[m]), points=int(m.sum()), p_min_Pa=float(pp[m].min()), p_max_Pa=float(pp[m].max()),
+                        p_mean_Pa=float(pp[m].mean()))
         except (ValueError, np.linalg.LinAlgError) as e:
             return {"error": str(e), "points": int(m.sum())}
 
     out = {name: fit(p_tr, tau_full, m) for name, m in sel.items()}
+    for name in ("baseline", "threshold"):
+        m = sel[name] & np.isfinite(p_tr) & np.isfinite(tau_full)
+        if m.sum() >= 4:
+            e = tau_full[m] - GLADKYY_MU * p_tr[m]
+            out[name + "_gladkyy_slope"] = {"mu": GLADKYY_MU, "c_Pa": float(e.mean()), "c_err_Pa": float(e.std(ddof=1) / np.sqrt(m.sum())),
+                                            "points": int(m.sum()), "p_mean_Pa": float(p_tr[m].mean())}
     out["tau_rtheta"] = fit(p_tr, tau_rt, band)
     out["p_zz"] = fit(p_zz, tau_full, band)
     if band.sum() >= 8:
@@ -328,19 +343,25 @@ def band_profile(profiles_csv):
             "points": np.array([len(r) for r in rows])}
 
 
-def excess_shear(wet_csv, dry_csv, mu_fixed=0.13):
+def excess_shear(wet_csv, dry, mu_fixed=GLADKYY_MU):
     """The cohesion of a wet run measured against the dry material of the same cell, without extrapolating
     to p = 0: at each height of the wet band, its shear stress minus the dry band's at the same pressure
     (tau_dry(p) interpolated linearly between the dry band's heights; only wet heights within the dry
-    band's pressure range). Gladkyy 2014 §4.1 fits every liquid content with the dry slope (mu = 0.13
+    band's pressure range). dry: the dry run's profiles.csv, or its fitted line as (mu, c_Pa, p_min_Pa,
+    p_max_Pa) when only the fit is kept (fits.json: mu, c_Pa and the baseline's p range). Gladkyy 2014 §4.1 fits every liquid content with the dry slope (mu = 0.13
     for dry and wet), so his c is this excess if his dry line has no intercept; `mu_fixed` gives the
     intercept of the wet points with that slope as well. Returns {rows: [(z_m, p_Pa, tau_Pa,
     tau_dry_Pa, excess_Pa)], excess_Pa (mean, weighted by band nodes), excess_low_Pa / excess_high_Pa
     (the heights below / above the median pressure), c_fixed_mu_Pa, c_fixed_mu_err_Pa (mean of tau - mu_fixed
-    p over the wet band's heights and its standard error)}."""
-    w, d = band_profile(wet_csv), band_profile(dry_csv)
-    order = np.argsort(d["p_Pa"])
-    dp, dt = d["p_Pa"][order], d["tau_Pa"][order]
+    p over the wet band's nodes and its standard error, as fit_variants' gladkyy_slope)}."""
+    w = band_profile(wet_csv)
+    if isinstance(dry, str):
+        d = band_profile(dry)
+        order = np.argsort(d["p_Pa"])
+        dp, dt = d["p_Pa"][order], d["tau_Pa"][order]
+    else:
+        mu, c, p_min, p_max = dry
+        dp, dt = np.array([p_min, p_max]), c + mu * np.array([p_min, p_max])
     inside = (w["p_Pa"] >= dp[0]) & (w["p_Pa"] <= dp[-1])
     if inside.sum() < 2:
         raise ValueError("excess_shear: %d heights of %s lie within the dry band's pressures %.3g-%.3g Pa (at least 2 needed)"
@@ -349,7 +370,9 @@ def excess_shear(wet_csv, dry_csv, mu_fixed=0.13):
     tau_dry = np.interp(p, dp, dt)
     excess = tau - tau_dry
     low = p <= np.median(p)
-    fixed = w["tau_Pa"] - mu_fixed * w["p_Pa"]
+    nodes = np.genfromtxt(wet_csv, delimiter=",", names=True)
+    nodes = nodes[(nodes["in_band"] > 0) & np.isin(nodes["z_m"], w["z_m"])]
+    fixed = nodes["tau_Pa"] - mu_fixed * nodes["p_Pa"]
     return {"rows": list(zip(w["z_m"][inside], p, tau, tau_dry, excess)), "excess_Pa": float(np.average(excess, weights=n)),
             "excess_low_Pa": float(np.average(excess[low], weights=n[low])), "excess_high_Pa": float(np.average(excess[~low], weights=n[~low])),
             "c_fixed_mu_Pa": float(fixed.mean()), "c_fixed_mu_err_Pa": float(fixed.std(ddof=1) / np.sqrt(len(fixed))), "mu_fixed": mu_fixed}

@@ -150,6 +150,8 @@ def test_excess_shear_against_known_lines(tmp_path):
     np.testing.assert_allclose(e["excess_Pa"], np.mean(1.55 - 0.007 * p), rtol=0, atol=1e-12)
     assert e["excess_low_Pa"] > e["excess_high_Pa"]
     assert abs(e["c_fixed_mu_Pa"] - 1.3) < 1e-12 and e["c_fixed_mu_err_Pa"] < 1e-12
+    line = cellanalysis.excess_shear(wet, (0.137, -0.25, 1.0, 25.0))  # the dry band given as its fitted line
+    np.testing.assert_allclose([r[4] for r in line["rows"]], [r[4] for r in e["rows"]], rtol=0, atol=1e-12)
 
 
 def test_excess_shear_needs_overlapping_pressures(tmp_path):
@@ -158,3 +160,24 @@ def test_excess_shear_needs_overlapping_pressures(tmp_path):
     wet = _profiles(tmp_path / "wet.csv", z, np.linspace(50.0, 20.0, 5), np.linspace(6.0, 3.0, 5))
     with pytest.raises(ValueError, match="dry band's pressures"):
         cellanalysis.excess_shear(wet, dry)
+
+
+def test_fit_variants_gladkyy_slope():
+    # Band stresses on Gladkyy's 13.6 nl line tau = 0.13 p + 1.3 Pa (§4.1), pressures 2-20 Pa over the
+    # heights, nodes outside the band (gamma_dot below 80 % of the peak) on another line: the free fit
+    # and the fit with his slope both give c = 1.3 Pa, the latter over the band's mean pressure.
+    nr, nz = 6, 5
+    p = np.linspace(2.0, 20.0, nz)[None, :] * np.ones((nr, 1))
+    band = np.zeros((nr, nz), bool)
+    band[2:4] = True
+    tau = np.where(band, 0.13 * p + 1.3, 0.5 * p)
+    sigma = np.zeros((3, 3, nr, nz))
+    for k in range(3):
+        sigma[k, k] = p
+    sigma[0, 1] = sigma[1, 0] = tau
+    gdot = np.where(band, 1.0, 0.1)
+    out = cellanalysis.fit_variants(sigma, gdot, np.ones((nr, nz), bool), 0.5)
+    assert out["baseline"]["mu"] == pytest.approx(0.13, abs=1e-12) and out["baseline"]["c_Pa"] == pytest.approx(1.3, abs=1e-12)
+    g = out["baseline_gladkyy_slope"]
+    assert g["mu"] == 0.13 and g["c_Pa"] == pytest.approx(1.3, abs=1e-12) and g["c_err_Pa"] < 1e-12
+    assert g["points"] == 10 and g["p_mean_Pa"] == pytest.approx(11.0, abs=1e-12)
