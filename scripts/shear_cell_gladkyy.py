@@ -2,7 +2,7 @@
 # spheres, configuration gladkyy_size), run in segments of at most BUDGET_MIN minutes of wall time
 # (default 110), each continuing the compact state of the last one (shearcell.save_state, about
 # 15 MB, committed with the torques so that any clone can continue the run).
-# Run:  build/yade-capillary -j2 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]
+# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]   (two cases side by side, one core each)
 #   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
 #   STOP: window (default: stop before the first snapshot of the averaging window) | end
 # Writes data/shear_cell_runs/gladkyy_size/prepared.npz (settling.npz while it settles), and per case
