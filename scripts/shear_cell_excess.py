@@ -13,7 +13,7 @@ import numpy as np
 from yade_capillary import cellanalysis
 
 if len(sys.argv) < 3:
-    raise SystemExit("usage: shear_cell_excess.py DRY_DIR WET_DIR [WET_DIR ...]")
+    raise SystemExit("usage: shear_cell_excess.py DRY WET_DIR [WET_DIR ...]")
 dry = os.path.join(sys.argv[1], "profiles.csv")
 if not os.path.exists(dry):
     with open(os.path.join(sys.argv[1], "fits.json")) as f:

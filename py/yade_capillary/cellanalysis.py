@@ -214,14 +214,7 @@ def analyse_reduced(rundir, gamma_dot_min=None, heights=5):
         raise ValueError("analyse_reduced: no reduced snapshots (cg_*.npz) in %s" % rundir)
     grid = analysis_grid(cfg)
     red = [dict(np.load(f)) for f in files]
-    rho, j, sig_c, S = (np.mean([r[k].astype(float) for r in red], axis=0) for k in ("rho", "j", "sig_c", "S"))
-    omega = cg.angular_velocity(grid, rho, j)
-    U = np.nan_to_num(omega) * grid.R
-    sig_k = S.copy()
-    sig_k[1] -= U * j
-    sig_k[:, 1] -= j * U
-    sig_k[1, 1] += rho * U * U
-    f = _fit_fields(grid, rho, sig_c + sig_k, omega, cfg, run["Omega_rad_s"], gamma_dot_min, heights)
+    rho, f = _fit_reduced(grid, red, run, gamma_dot_min, heights)
     mech = [float(r["mechanical_per_particle"]) for r in red]
     out = dict(_fit_summary(run, f, len(red)),
                contact_numbers={"mechanical_per_particle": float(np.mean(mech)), "mechanical_std": float(np.std(mech)),
@@ -233,6 +226,20 @@ def analyse_reduced(rundir, gamma_dot_min=None, heights=5):
         json.dump(out, fh, indent=1, default=float)
     _write_profiles(rundir, grid, rho, f, cfg)
     return out
+
+
+def _fit_reduced(grid, red, run, gamma_dot_min=None, heights=5):
+    """The fits of the reduced snapshots `red` (loaded cg_*.npz dicts) of a run (its run.json dict):
+    their fields averaged, the kinetic stress relative to the mean velocity at the node (see
+    analyse_reduced); returns (rho, the _fit_fields dict)."""
+    rho, j, sig_c, S = (np.mean([r[k].astype(float) for r in red], axis=0) for k in ("rho", "j", "sig_c", "S"))
+    omega = cg.angular_velocity(grid, rho, j)
+    U = np.nan_to_num(omega) * grid.R
+    sig_k = S.copy()
+    sig_k[1] -= U * j
+    sig_k[:, 1] -= j * U
+    sig_k[1, 1] += rho * U * U
+    return rho, _fit_fields(grid, rho, sig_c + sig_k, omega, run["cfg"], run["Omega_rad_s"], gamma_dot_min, heights)
 
 
 def fit_variants(sigma, gdot, away, gamma_dot_min):
@@ -291,39 +298,28 @@ def fit_variants(sigma, gdot, away, gamma_dot_min):
 
 def block_fits(rundir, blocks=3, keep=None):
     """The scatter of a run's fit over time: its snapshots split into `blocks` consecutive blocks, each
-    fitted on its own (analyse_reduced of the block's reduced snapshots; each snapshot of rundir is
+    fitted on its own (as analyse_reduced, from the block's reduced snapshots; each snapshot of rundir is
     reduced once to keep/cg_NNN.npz, keep defaulting to rundir). The fit's own standard errors treat
     the band's grid nodes as independent, which neighbouring nodes (R/2 apart, kernel width R) and
     one snapshot set are not; the spread of the blocks is the error of a time average over the
     blocks' length. Returns {blocks: [fit summary per block], and for mu, c_Pa, Rc_mean_m and W_mean_m:
     the mean of the blocks and its standard error (block std / sqrt(blocks))}."""
-    import shutil
-    import tempfile
-
     keep = rundir if keep is None else keep
     os.makedirs(keep, exist_ok=True)
     with open(os.path.join(rundir, "run.json")) as f:
-        cfg = json.load(f)["cfg"]
-    snaps = sorted(glob.glob(os.path.join(rundir, "snap_*.npz")))
+        run = json.load(f)
+    for k, snap in enumerate(sorted(glob.glob(os.path.join(rundir, "snap_*.npz")))):
+        out = os.path.join(keep, "cg_%03d.npz" % (k + 1))
+        if not os.path.exists(out):
+            reduce_snapshot(snap, run["cfg"], out)
     reduced = sorted(glob.glob(os.path.join(keep, "cg_*.npz")))
-    if snaps:
-        for k, snap in enumerate(snaps):
-            out = os.path.join(keep, "cg_%03d.npz" % (k + 1))
-            if not os.path.exists(out):
-                reduce_snapshot(snap, cfg, out)
-        reduced = sorted(glob.glob(os.path.join(keep, "cg_*.npz")))
     if not 2 <= blocks <= len(reduced):
         raise ValueError("blocks: %r is outside [2, %d] (the run's %d snapshots)" % (blocks, len(reduced), len(reduced)))
+    grid = analysis_grid(run["cfg"])
+    red = [dict(np.load(r)) for r in reduced]
     out = {"blocks": []}
-    for part in np.array_split(np.arange(len(reduced)), blocks):
-        d = tempfile.mkdtemp(prefix="block_")
-        try:
-            shutil.copy(os.path.join(rundir, "run.json"), d)
-            for i in part:
-                os.symlink(os.path.abspath(reduced[i]), os.path.join(d, os.path.basename(reduced[i])))
-            f = analyse_reduced(d)
-        finally:
-            shutil.rmtree(d)
+    for part in np.array_split(np.arange(len(red)), blocks):
+        f = _fit_summary(run, _fit_reduced(grid, [red[i] for i in part], run)[1], len(part))
         out["blocks"].append({"snapshots": [int(i) + 1 for i in part], "mu": f["mu"], "c_Pa": f["c_Pa"],
                               "Rc_mean_m": float(np.mean(f["Rc_m"])), "W_mean_m": float(np.mean(f["W_m"])), "fit_variants": f["fit_variants"]})
     for k in ("mu", "c_Pa", "Rc_mean_m", "W_mean_m"):
@@ -334,13 +330,14 @@ def block_fits(rundir, blocks=3, keep=None):
 
 def band_profile(profiles_csv):
     """The shear band of a run by height, from its profiles.csv (written by analyse): {z_m, p_Pa, tau_Pa,
-    points}, the means over the band's nodes at each height that has at least 2 of them."""
+    points}, the means over the band's nodes at each height that has at least 2 of them, and those nodes
+    themselves (nodes: the rows of profiles.csv)."""
     d = np.genfromtxt(profiles_csv, delimiter=",", names=True)
     b = d[d["in_band"] > 0]
     zs = [z for z in np.unique(b["z_m"]) if (b["z_m"] == z).sum() >= 2]
     rows = [b[b["z_m"] == z] for z in zs]
     return {"z_m": np.array(zs), "p_Pa": np.array([r["p_Pa"].mean() for r in rows]), "tau_Pa": np.array([r["tau_Pa"].mean() for r in rows]),
-            "points": np.array([len(r) for r in rows])}
+            "points": np.array([len(r) for r in rows]), "nodes": b[np.isin(b["z_m"], zs)]}
 
 
 def excess_shear(wet_csv, dry, mu_fixed=GLADKYY_MU):
@@ -370,9 +367,7 @@ def excess_shear(wet_csv, dry, mu_fixed=GLADKYY_MU):
     tau_dry = np.interp(p, dp, dt)
     excess = tau - tau_dry
     low = p <= np.median(p)
-    nodes = np.genfromtxt(wet_csv, delimiter=",", names=True)
-    nodes = nodes[(nodes["in_band"] > 0) & np.isin(nodes["z_m"], w["z_m"])]
-    fixed = nodes["tau_Pa"] - mu_fixed * nodes["p_Pa"]
+    fixed = w["nodes"]["tau_Pa"] - mu_fixed * w["nodes"]["p_Pa"]
     return {"rows": list(zip(w["z_m"][inside], p, tau, tau_dry, excess)), "excess_Pa": float(np.average(excess, weights=n)),
             "excess_low_Pa": float(np.average(excess[low], weights=n[low])), "excess_high_Pa": float(np.average(excess[~low], weights=n[~low])),
             "c_fixed_mu_Pa": float(fixed.mean()), "c_fixed_mu_err_Pa": float(fixed.std(ddof=1) / np.sqrt(len(fixed))), "mu_fixed": mu_fixed}

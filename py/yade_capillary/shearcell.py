@@ -165,7 +165,8 @@ def prepare(config, case, path, seed=None, log=print, checkpoint=None, save_ever
 
     cfg = dict(CONFIGS[config], **({} if seed is None else {"seed": seed}))
     settling = engines(gravity=(0, 0, -cfg.get("g", GRAVITY)), damping=0.3)
-    steps = int(cfg["settle_s"] / (cfg["dt_over_tc"] * cfg["tc"]))
+    dt = cfg["dt_over_tc"] * cfg["tc"]
+    steps = int(cfg["settle_s"] / dt)
     if checkpoint is not None and os.path.exists(checkpoint):
         info = load_state(checkpoint)
         if (info["config"], info["case"], info["cfg"]) != (config, case, cfg):
@@ -176,7 +177,7 @@ def prepare(config, case, path, seed=None, log=print, checkpoint=None, save_ever
         # Flowing spheres on a loose lattice filling the annulus to 1.4 H (settles to ~H; see build).
         ids = build(cfg, case)
         O.engines = settling
-        O.dt = cfg["dt_over_tc"] * cfg["tc"]
+        O.dt = dt
         info = {"config": config, "case": case, "flowing": ids["flowing"], "static": ids["static"], "rotating": ids["rotating"], "cfg": cfg,
                 "settled_steps": 0}
         log("prepare %s/%s: %d flowing + %d wall spheres, settling %d steps" % (config, case, len(ids["flowing"]), len(ids["static"]) + len(ids["rotating"]), steps))
