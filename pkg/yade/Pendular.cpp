@@ -950,11 +950,13 @@ void Law2_ScGeom_PendularPhys_Bridge::clearBodies(Scene* current)
 			if (auto* state = dynamic_cast<PendularState*>(b->state.get())) liquidRemoved += state->film;
 }
 
-void Law2_ScGeom_PendularPhys_Bridge::formBridge(Body::id_t id1, Body::id_t id2)
+void Law2_ScGeom_PendularPhys_Bridge::formBridge(Body::id_t id1, Body::id_t id2, Real pastRupture)
 {
 	refuseWhileRunning("formBridge()");
 	const auto&       current = Omega::instance().getScene();
 	const std::string pair    = "formBridge(id1=" + std::to_string(id1) + ", id2=" + std::to_string(id2) + "): ";
+	if (!(pastRupture >= 0 && math::isfinite(pastRupture)))
+		throw std::invalid_argument(pair + "pastRupture = " + capillary::format_value(pastRupture) + " m; allowed: a finite value >= 0 m");
 	PendularLoop::syncScene(current.get(), true); // the loop reads the changed objects at its next step
 	const shared_ptr<Interaction> I = current->interactions->find(id1, id2);
 	if (!I || !I->isReal()) throw std::invalid_argument(pair + "no real interaction between these bodies (utils.createInteraction makes one)");
@@ -965,9 +967,9 @@ void Law2_ScGeom_PendularPhys_Bridge::formBridge(Body::id_t id1, Body::id_t id2)
 	if (phys->film) throw std::invalid_argument(pair + "liquid='film': a film-mode bridge takes its liquid from the films, not from a saved state");
 	if (phys->active) throw std::invalid_argument(pair + "the interaction already has a bridge");
 	const Real gap = -geom->penetrationDepth;
-	if (!(gap <= phys->bridge.rupture))
-		throw std::invalid_argument(pair + "gap = " + std::to_string(gap) + " m is beyond the rupture distance; allowed: gap <= "
-		                            + std::to_string(phys->bridge.rupture) + " m");
+	if (!(gap <= phys->bridge.rupture + pastRupture))
+		throw std::invalid_argument(pair + "gap = " + capillary::format_value(gap) + " m is beyond the rupture distance; allowed: gap <= "
+		                            + capillary::format_value(phys->bridge.rupture) + " m + pastRupture (" + capillary::format_value(pastRupture) + " m)");
 	phys->active = true;
 	if (pendularOwner(current->subdomain, Body::byId(id1, current)->subdomain, Body::byId(id2, current)->subdomain)) {
 		nBridges += 1;

@@ -312,9 +312,11 @@ public:
 	void clearBodies(Scene* scene);
 	boost::python::dict liquidTotals() const;
 	// Gives the real interaction id1-id2 of the current scene the bridge of its physics, counted in
-	// the totals as at a first contact, for a bridge of a saved state (yade_capillary.checkpoint).
+	// the totals as at a first contact, for a bridge of a saved state (shearcell.load_state), up to a gap
+	// of the rupture distance + pastRupture [m]: a state saved after Newton's half of a step may hold a
+	// bridge that the step stretched past rupture and that the law breaks at the next step.
 	// std::invalid_argument (ValueError) naming what does not allow it.
-	void formBridge(Body::id_t id1, Body::id_t id2);
+	void formBridge(Body::id_t id1, Body::id_t id2, Real pastRupture);
 
 private:
 	// Film mode: what the bridges ask of the films in a step, done by settleFilms. Rare (formation and
@@ -362,10 +364,11 @@ public:
 		((Real, liquidRemoved, 0, Attr::readonly, "liquid='film': liquid that left the scene with erased bodies (O.bodies.erase) [m^3]: their films and their shares of their bridges. films + bridges + liquidRemoved is constant (liquidTotals()). Saved by O.save.")),
 		/*ctor*/,
 		/*py*/
-		.def("formBridge", &Law2_ScGeom_PendularPhys_Bridge::formBridge, (boost::python::arg("id1"), boost::python::arg("id2")),
+		.def("formBridge", &Law2_ScGeom_PendularPhys_Bridge::formBridge, (boost::python::arg("id1"), boost::python::arg("id2"), boost::python::arg("pastRupture") = 0.0),
 		     "Form the bridge of the real interaction id1-id2 of the current scene, as at its first contact (nBridges, liquidVolume "
-		     "and liquidFormed count it), whatever the gap up to the rupture distance: restores a bridge of a saved state "
-		     "(yade_capillary.checkpoint). Only for a wet fixed-volume pair without a bridge, not while the simulation runs; "
+		     "and liquidFormed count it), whatever the gap up to the rupture distance + pastRupture [m] (>= 0; a saved bridge that the "
+		     "step before the save stretched past its rupture distance, which the law breaks at the next step): restores a bridge of "
+		     "a saved state (shearcell.load_state). Only for a wet fixed-volume pair without a bridge, not while the simulation runs; "
 		     "ValueError otherwise.")
 		.def("liquidTotals", &Law2_ScGeom_PendularPhys_Bridge::liquidTotals, "The liquid of the current scene [m^3] as a dict: films (sum of PendularState.film over the bodies), bridges (sum of Vb over the film-mode bridges that exist), removed (liquidRemoved), total (their sum, constant in film mode) and fixedBridges (the bridges of fixed-volume materials, not part of total)."));
 	// clang-format on

@@ -464,7 +464,7 @@ def torque_closure(data, cfg, w, omega_at, step_over_R=2.0):
 
 def gap_classes(csv_path):
     """Gladkyy 2014 section 4.2, Fig. 9-10, from a run's contacts_vs_a.csv: the contacts per snapshot
-    in classes of the surface separation a (a_crit = the largest bin centre): in contact (bins
+    in classes of the surface separation a (a_crit = the centre of the last bin that holds contacts): in contact (bins
     entirely at a <= 0), the bin straddling a = 0 (touching contacts and the shortest bridges), short
     bridges (bins entirely at a >= 0, centre <= a_crit/2) and long bridges (centre > a_crit/2);
     the share of the short ones among the separated bridges (Gladkyy: "most of them have only short
@@ -475,15 +475,19 @@ def gap_classes(csv_path):
     missing = [c for c in ("a_m", "contacts_per_snapshot", "band_contacts_per_m3", "outside_contacts_per_m3") if c not in A.dtype.names]
     if missing:
         raise ValueError("gap_classes: %s has no column %s (written by an older analysis)" % (csv_path, ", ".join(missing)))
-    a = np.atleast_1d(A["a_m"])
-    a_crit = max(float(a.max()), 0.0)
+    a, n = np.atleast_1d(A["a_m"]), np.atleast_1d(A["contacts_per_snapshot"])
+    held = a[n > 0]
+    a_crit = max(float(held.max()), 0.0) if len(held) else 0.0
     half = float(np.median(np.diff(a))) / 2 if len(a) > 1 else 0.0  # half a bin
+    # Bin edges are centre -+ half, computed: an edge at a = 0 comes out as +-1e-22 m or so, and must
+    # not make its bin straddle a = 0.
+    tol = 1e-6 * half
     # A bin that straddles a = 0 holds both touching contacts and the shortest bridges: its own class.
-    classes = {"contact": a + half <= 0, "straddling": (a - half < 0) & (a + half > 0), "short": (a - half >= 0) & (a <= a_crit / 2),
-               "long": a > a_crit / 2}
+    classes = {"contact": a + half <= tol, "straddling": (a - half < -tol) & (a + half > tol),
+               "short": (a - half >= -tol) & (a <= a_crit / 2), "long": a > a_crit / 2}
     out = {"a_crit_m": a_crit}
     for name, m in classes.items():
-        out[name + "_per_snapshot"] = float(np.nansum(np.atleast_1d(A["contacts_per_snapshot"])[m]))
+        out[name + "_per_snapshot"] = float(np.nansum(n[m]))
         inside = float(np.nansum(np.atleast_1d(A["band_contacts_per_m3"])[m]))
         outside = float(np.nansum(np.atleast_1d(A["outside_contacts_per_m3"])[m]))
         out[name + "_band_over_outside"] = inside / outside if outside > 0 else float("nan")

@@ -250,7 +250,11 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
     total = _Counts()
     hung = []  # (index, spec) of every hang and crash
     by_model = {}  # model -> failure counts
-    ctx = mp.get_context("fork")
+    # Workers come from a forkserver (a fresh interpreter), not forked from this process: a fork copies
+    # the locks that this process's library threads (pytest's, BLAS's) may hold at that moment, and a
+    # worker that inherits a held lock waits forever (false hangs in the full Python suite).
+    ctx = mp.get_context("forkserver")
+    ctx.set_forkserver_preload([__name__])
     i = 0
     while i < n:
         parent, child = ctx.Pipe(duplex=False)

@@ -510,12 +510,22 @@ def load_state(path, case=None, loop="fused"):
     info["t_offset_s"] = info.pop("time_s")
     law = _law()
     frictional = cfg["friction"] > 0
-    for k, (a, b) in enumerate(d["pairs"]):
-        I = createInteraction(int(a), int(b))
-        if d["active"][k]:
-            law.formBridge(int(a), int(b))
+    # Each d[...] of an NpzFile decompresses its whole array: read every array once (indexing d["active"]
+    # per pair made rebuilding a Gladkyy-size state take 12 minutes).
+    pairs, active, shear, vel = d["pairs"], d["active"], d["shear"], d["vel"]
+    # A save follows Newton's half of a step, so a bridge may have been stretched past its rupture distance
+    # by that step (the law breaks it at the next one, as in the uninterrupted run): by at most the
+    # relative displacement of the step, |v2 - v1| dt of the saved velocities.
+    stretch = np.linalg.norm(vel[pairs[:, 1]] - vel[pairs[:, 0]], axis=1) * O.dt if len(pairs) else np.zeros(0)
+    for k, (a, b) in enumerate(pairs.tolist()):
+        I = createInteraction(a, b)
+        if active[k]:
+            try:
+                law.formBridge(a, b, pastRupture=float(stretch[k]))
+            except ValueError as e:
+                raise ValueError("load_state: %s: bridge %d-%d: %s" % (path, a, b, e)) from None
         if frictional:
-            I.phys.shearForce = tuple(d["shear"][k])
+            I.phys.shearForce = tuple(shear[k])
     return info
 
 
@@ -615,7 +625,7 @@ def report(config_dir, particles=200000, duration_s=5.0):
             "Rc_mean_mm": 1e3 * float(np.mean([r[1] for r in rc])) if rc else None,
             "W_mean_mm": 1e3 * float(np.mean([r[2] for r in rc])) if rc else None,
             "Rc_surface_law_mm": 1e3 * surface_band_centre(cfg),
-            "torque_rotating_Nm": fit["torque_Nm"], "torque_static_Nm": fit["torque_static_Nm"], "torque_cg_at_Rs_Nm": fit["torque_cg_at_Rs_Nm"],
+            "torque_rotating_Nm": fit["torque_Nm"], "torque_static_Nm": fit["torque_static_Nm"], "torque_cg_at_Rs_Nm": fit.get("torque_cg_at_Rs_Nm"),  # not from reduced snapshots
             "mu_gladkyy": GLADKYY_2014[case]["mu"], "c_gladkyy_Pa": GLADKYY_2014[case]["c_Pa"],
             "steps": run_info["steps"], "wall_s": run_info["wall_s"], "particle_steps_per_s": run_info["particle_steps_per_s"],
             "rotation_s": cfg["run_s"], "projected_h": particles * duration_s / dt / run_info["particle_steps_per_s"] / 3600,
@@ -631,14 +641,17 @@ def report(config_dir, particles=200000, duration_s=5.0):
     def num(v, fmt):
         return "n/a" if v is None else fmt % v
 
+    def mN(v):
+        return num(None if v is None else 1e3 * v, "%.2f")
+
     md = ["| case | mu (Gladkyy) | c [Pa] (Gladkyy) | mu, c [Pa], gamma_dot threshold | Rc top / mean [mm] (surface law) | W mean [mm] | torque rotating / static / CG at Rs [mN m] | run |",
           "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        md.append("| %s | %.3f ± %.3f (%.2f) | %.2f ± %.2f (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %.2f / %.2f / %.2f | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
+        md.append("| %s | %.3f ± %.3f (%.2f) | %.2f ± %.2f (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %s / %s / %s | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
             r["case"], r["mu"], r["mu_err"], r["mu_gladkyy"], r["c_Pa"], r["c_err_Pa"], r["c_gladkyy_Pa"],
             num(r["mu_threshold"], "%.3f"), num(r["c_threshold_Pa"], "%.2f"), r["band_points_threshold"],
             num(r["Rc_top_mm"], "%.1f"), num(r["Rc_mean_mm"], "%.1f"), r["Rc_surface_law_mm"], num(r["W_mean_mm"], "%.1f"),
-            1e3 * r["torque_rotating_Nm"], 1e3 * r["torque_static_Nm"], 1e3 * r["torque_cg_at_Rs_Nm"],
+            mN(r["torque_rotating_Nm"]), mN(r["torque_static_Nm"]), mN(r["torque_cg_at_Rs_Nm"]),
             r["rotation_s"], r["steps"], r["wall_s"], r["particle_steps_per_s"], particles, duration_s, r["projected_h"]))
     md += _variant_tables(config_dir)
     text = "\n".join(md) + "\n"
@@ -671,7 +684,8 @@ def _variant_tables(config_dir):
                     cells.append(v.get("error", "n/a"))
                 else:
                     extra = ", k = %.4f ± %.4f 1/Pa" % (v["k_1_Pa"], v["k_err_1_Pa"]) if "k_1_Pa" in v else ""
-                    cells.append("%.3f ± %.3f, %.2f ± %.2f (%d)%s" % (v["mu"], v["mu_err"], v["c_Pa"], v["c_err_Pa"], v["points"], extra))
+                    mu = "%.3f ± %.3f" % (v["mu"], v["mu_err"]) if "mu_err" in v else "%.3f (fixed)" % v["mu"]  # *_gladkyy_slope
+                    cells.append("%s, %.2f ± %.2f (%d)%s" % (mu, v["c_Pa"], v["c_err_Pa"], v["points"], extra))
             out.append("| %s | %s |" % (n, " | ".join(cells)))
     have = [c for c, f in fits_by_case.items() if f.get("torque_closure")]
     if have:

@@ -101,6 +101,22 @@ def test_gap_classes(tmp_path):
     assert g["long_band_over_outside"] == pytest.approx(2.0)
 
 
+def test_gap_classes_computed_edges(tmp_path):
+    # Bins as a histogram makes them: 12 edges of 7 um from -21 um, centres halfway, so that the edge at
+    # a = 0 is computed (-4e-22 m here) and the last three bins are empty. Expected: no straddling bin;
+    # contact = the 3 bins below 0 (15), a_crit = 38.5 um (the last bin with contacts, not the last
+    # centre 59.5 um), short = centres 3.5-17.5 um <= a_crit/2 (9), long = 24.5-38.5 um (3).
+    edges = np.linspace(-2.1e-5, 6.3e-5, 13)
+    a = (edges[:-1] + edges[1:]) / 2
+    n = [5, 5, 5, 4, 3, 2, 1, 1, 1, 0, 0, 0]
+    path = tmp_path / "contacts_vs_a.csv"
+    np.savetxt(path, np.column_stack([a, n, np.ones(12), n, np.ones(12), n]), delimiter=",",
+               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
+    g = cellanalysis.gap_classes(str(path))
+    assert g["a_crit_m"] == pytest.approx(38.5e-6)
+    assert (g["contact_per_snapshot"], g["straddling_per_snapshot"], g["short_per_snapshot"], g["long_per_snapshot"]) == (15, 0, 9, 3)
+
+
 def test_force_against_model(tmp_path):
     # A table whose separated bins (9 of 2e-5 m, the bin centred at 0 straddles a = 0) hold exactly the
     # model's bin-averaged force, one bin doubled: the median ratio is 1, the mean weighted by the
@@ -181,3 +197,25 @@ def test_fit_variants_gladkyy_slope():
     g = out["baseline_gladkyy_slope"]
     assert g["mu"] == 0.13 and g["c_Pa"] == pytest.approx(1.3, abs=1e-12) and g["c_err_Pa"] < 1e-12
     assert g["points"] == 10 and g["p_mean_Pa"] == pytest.approx(11.0, abs=1e-12)
+
+
+def test_report_of_reduced_fits(tmp_path):
+    # shearcell.report on what analyse_reduced writes (no CG torque at Rs: it needs every contact) with
+    # a fixed-slope variant (no mu_err): the table must show the run's numbers, "n/a" for the missing
+    # torque and the fixed slope as such (both raised KeyError before).
+    from yade_capillary import shearcell
+    cfg = dict(CFG, dt_over_tc=0.05, tc=5.4e-4, run_s=5.0)
+    d = tmp_path / "dry"
+    d.mkdir()
+    band = [{"z_m": 0.01, "Rc_m": 0.04, "W_m": 0.006}]
+    fit = {"mu": 0.134, "mu_err": 0.001, "c_Pa": 0.76, "c_err_Pa": 0.04, "mu_threshold": 0.14, "c_Pa_threshold": 0.5, "band_points": 40,
+           "band_points_threshold": 50, "band_fits": band, "torque_Nm": 0.1106, "torque_static_Nm": -0.11,
+           "fit_variants": {"baseline": {"mu": 0.134, "mu_err": 0.001, "c_Pa": 0.76, "c_err_Pa": 0.04, "points": 40},
+                            "baseline_gladkyy_slope": {"mu": 0.13, "c_Pa": 0.91, "c_err_Pa": 0.02, "points": 40}}}
+    (d / "fits.json").write_text(json.dumps(fit))
+    (d / "run.json").write_text(json.dumps({"cfg": cfg, "steps": 185185, "wall_s": 24000.0, "particle_steps_per_s": 1.3e6}))
+    md = shearcell.report(str(tmp_path))
+    row = next(line for line in md.splitlines() if line.startswith("| dry |"))
+    assert "0.134 ± 0.001 (0.13)" in row and "0.76 ± 0.04 (0.0)" in row
+    assert "110.60 / -110.00 / n/a" in row
+    assert "| baseline_gladkyy_slope | 0.130 (fixed), 0.91 ± 0.02 (40) |" in md

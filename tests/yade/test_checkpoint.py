@@ -13,7 +13,9 @@
 # Then run_segment on a copy of the state with a run of 3 snapshot intervals: a first segment stopped
 # by its wall-time budget, a second one that completes it; the torque records must follow each other
 # in time without a gap or a repeat, and every snapshot, its reduced CG fields and run.json must exist. Bad input: formBridge
-# on a pair without interaction and twice on one bridge raise ValueError naming the pair.
+# on a pair without interaction, twice on one bridge, and with a negative or NaN pastRupture raise ValueError
+# naming the pair. A bridge saved
+# past its rupture distance is restored only within the last step's stretch (see below).
 # Settling with a checkpoint (prepare(..., checkpoint=...), how the Gladkyy-size cell settles across
 # sessions): a short settling (0.03 s, 1111 steps, the bottom layer reaches the floor) saved after
 # every 500-step chunk, then continued from its last checkpoint (step 1000): the positions and
@@ -83,9 +85,55 @@ if O.interactions.has(*ids):
 ck.raises(ValueError, lambda: law.formBridge(*ids), ["formBridge(id1=%d, id2=%d)" % ids, "no real interaction"], "formBridge without interaction")
 a, b = next(k for k, v in realB.items() if v)
 ck.raises(ValueError, lambda: law.formBridge(a, b), ["formBridge(id1=%d, id2=%d)" % (a, b), "already has a bridge"], "formBridge twice")
+for bad in (-1e-06, float("nan")):
+    ck.raises(ValueError, lambda: law.formBridge(a, b, pastRupture=bad), ["formBridge(id1=%d, id2=%d)" % (a, b), "pastRupture = %g m" % bad,
+              "a finite value >= 0 m"], "formBridge with pastRupture = %g" % bad)
+
+# A bridge saved past its rupture distance (the step before a save can stretch a bridge past it; the law
+# breaks it at the next step). From the saved arrays: body b of a separated bridge a-b moved along the
+# line of centres to 1e-3 sCrit past that bridge's rupture distance sCrit (a body whose other bridges
+# stay within theirs). With the saved velocities made equal, the step's stretch |v2 - v1| dt is 0 and
+# load_state must refuse it, naming the file and the pair; with v_b - v_a = 2e-3 sCrit / dt along the
+# normal (a stretch twice the excess) it restores all nA bridges, and the next step breaks this one
+# (liquidReleased grows by at least its Vb).
+d = dict(np.load(path))
+sCrit = {(I.id1, I.id2): (I.phys.sCrit, I.phys.Vb) for I in O.interactions if I.isReal and I.phys.active}
+
+
+def gap(x, i, j):
+    return float(np.linalg.norm(x[j] - x[i]) - d["radius"][i] - d["radius"][j])
+
+
+def past_rupture(a, b):
+    """Positions with b moved 1e-3 sCrit past the rupture distance of a-b, or None if another of b's bridges
+    would then be past its own."""
+    x = d["pos"].copy()
+    n = (x[b] - x[a]) / np.linalg.norm(x[b] - x[a])
+    s = sCrit[a, b][0]
+    x[b] += n * (1.001 * s - gap(x, a, b))
+    others = [(i, j) for (i, j) in sCrit if b in (i, j) and (i, j) != (a, b)]
+    return (x, n, s) if all(gap(x, i, j) < sCrit[i, j][0] for (i, j) in others) else None
+
+
+flowing = set(info["flowing"])
+a, b, x, n, s = next((a, b) + found for (a, b), (sc, _) in sCrit.items()
+                     if a in flowing and b in flowing and 0 < gap(d["pos"], a, b) < sc and (found := past_rupture(a, b)))
+v = d["vel"].copy()
+v[b] = v[a]
+past = os.path.join(work, "past_rupture.npz")
+np.savez_compressed(past, **dict(d, pos=x, vel=v))
+ck.raises(ValueError, lambda: shearcell.load_state(past), ["load_state", past, "bridge %d-%d" % (a, b), "beyond the rupture distance"],
+          "a saved bridge past rupture by more than the step's stretch")
+v[b] = v[a] + n * 2e-3 * s / json.loads(str(d["meta"]))["dt_s"]
+np.savez_compressed(past, **dict(d, pos=x, vel=v))
+shearcell.load_state(past)
+law = shearcell._law()
+ck.true(int(law.nBridges) == nA and O.interactions[a, b].phys.active, "a bridge within the step's stretch past rupture restored (%d of %d)" % (int(law.nBridges), nA))
+O.step()
+ck.true(not (O.interactions.has(a, b) and O.interactions[a, b].isReal and O.interactions[a, b].phys.active), "the restored bridge breaks at the next step")
+ck.true(float(law.liquidReleased) >= sCrit[a, b][1], "liquidReleased %.6g >= Vb %.6g of the broken bridge" % (float(law.liquidReleased), sCrit[a, b][1]))
 
 # Segments: a run of 3 snapshot intervals of 0.004 s (cfg changed in the state's info).
-d = dict(np.load(path))
 meta = json.loads(str(d["meta"]))
 meta["cfg"].update(run_s=0.012, snapshots=3, snapshot_dt_s=0.004)
 short = os.path.join(work, "short.npz")
