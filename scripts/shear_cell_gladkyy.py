@@ -4,6 +4,8 @@
 # 15 MB, committed with the torques so that any clone can continue the run).
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]   (two cases side by side, one core each)
 #   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
+#         | status (the fits of every case so far from its reduced snapshots, cellanalysis.interim, written to
+#           CASE/interim/; the wet cases' excess shear stress over the dry band at the same pressure)
 #   STOP: window (default: stop before the first snapshot of the averaging window) | end
 # Writes data/shear_cell_runs/gladkyy_size/prepared.npz (settling.npz while it settles), and per case
 # data/shear_cell_runs/gladkyy_size/CASE/{state.npz, torque.csv, cg_NNN.npz} (what the next segment continues
@@ -22,9 +24,34 @@ if not 0 < budget_min <= 120:
     raise ValueError("BUDGET_MIN: %g is outside (0, 120] (segments of at most 2 h)" % budget_min)
 if stop not in ("window", "end"):
     raise ValueError("STOP: %r is not one of window, end" % stop)
-if case != "prepare" and case not in shearcell.ALL_CASES:
-    raise ValueError("CASE: %r is not one of prepare, %s" % (case, ", ".join(shearcell.ALL_CASES)))
+if case not in ("prepare", "status") and case not in shearcell.ALL_CASES:
+    raise ValueError("CASE: %r is not one of prepare, status, %s" % (case, ", ".join(shearcell.ALL_CASES)))
 root = os.path.join("data", "shear_cell_runs", "gladkyy_size")
+if case == "status":
+    fits = {}
+    for c in shearcell.ALL_CASES:
+        keep = os.path.join(root, c)
+        if os.path.exists(os.path.join(keep, "state.npz")) and any(f.startswith("cg_") for f in os.listdir(keep)):
+            fits[c] = cellanalysis.interim(keep)
+    print("| case | steps | t [s] | snapshots | mu | c [Pa] | c at mu = %.2f [Pa] | torque [mN m] | contacts per sphere |" % cellanalysis.GLADKYY_MU)
+    print("|---|---|---|---|---|---|---|---|---|")
+    for c, f in fits.items():
+        g = f["fit_variants"].get("baseline_gladkyy_slope", {})
+        print("| %s | %d of %d | %.3f | %d | %.3f ± %.3f | %.2f ± %.2f | %s | %.1f | %.3f |" % (
+            c, f["done_steps"], f["steps"], f["t_s"], f["snapshots"], f["mu"], f["mu_err"], f["c_Pa"], f["c_err_Pa"],
+            "%.2f ± %.2f" % (g["c_Pa"], g["c_err_Pa"]) if "c_Pa" in g else "n/a", 1e3 * abs(f["torque_Nm"]),
+            f["contact_numbers"]["mechanical_per_particle"]))
+    if "dry" in fits:
+        dry = os.path.join(root, "dry", "interim", "profiles.csv")
+        for c in fits:
+            if c != "dry":
+                try:
+                    e = cellanalysis.excess_shear(os.path.join(root, c, "interim", "profiles.csv"), dry)
+                    print("%s: excess shear stress over dry at the same pressure %.2f Pa (low p %.2f, high p %.2f)"
+                          % (c, e["excess_Pa"], e["excess_low_Pa"], e["excess_high_Pa"]))
+                except ValueError as err:
+                    print("%s: %s" % (c, err))
+    sys.exit(0)
 prepared = os.path.join(root, "prepared.npz")
 if case == "prepare":
     os.makedirs(root, exist_ok=True)

@@ -155,17 +155,10 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     # The same inside the band and in the bulk outside it (Gladkyy Fig. 9-10: contact number and mean
     # force against the gap in the band; wet-contact density in and out of it), per unit volume.
     where = np.concatenate([_region(d, grid, band, bulk) for d in data])
-    cell_vol = grid.volume_elements()
-    v_in, v_out = cell_vol[band].sum(), cell_vol[bulk & ~band].sum()
     n_in, _ = np.histogram(gaps[where == 1], edges)
     f_in, _ = np.histogram(gaps[where == 1], edges, weights=forces[where == 1])
     n_out, _ = np.histogram(gaps[where == 2], edges)
-    np.savetxt(os.path.join(rundir, "contacts_vs_a.csv"),
-               np.stack([centers, counts / len(data), np.where(counts > 0, fsum / np.maximum(counts, 1), np.nan),
-                         n_in / len(data) / v_in if v_in > 0 else np.full(len(centers), np.nan),
-                         np.where(n_in > 0, f_in / np.maximum(n_in, 1), np.nan),
-                         n_out / len(data) / v_out if v_out > 0 else np.full(len(centers), np.nan)], axis=1), delimiter=",",
-               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
+    _write_contacts_vs_a(rundir, grid, band, bulk, centers, np.stack([counts, fsum, n_in, f_in, n_out]) / len(data))
     wet_in, wet_out = _wet_density(data, grid, band, bulk, cfg)
     contacts = contact_numbers(data)
 
@@ -179,35 +172,99 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     return out
 
 
+def _write_contacts_vs_a(rundir, grid, band, bulk, centers, h):
+    """contacts_vs_a.csv from the per-snapshot histograms h over the bins `centers` [m]: h[0] all
+    contacts, h[1] the sum of their |F|, h[2], h[3] the same of the contacts in the band, h[4] the
+    contacts in the bulk outside it."""
+    cell_vol = grid.volume_elements()
+    v_in, v_out = cell_vol[band].sum(), cell_vol[bulk & ~band].sum()
+    counts, fsum, n_in, f_in, n_out = h
+    np.savetxt(os.path.join(rundir, "contacts_vs_a.csv"),
+               np.stack([centers, counts, np.where(counts > 0, fsum / np.where(counts > 0, counts, 1), np.nan),
+                         n_in / v_in if v_in > 0 else np.full(len(centers), np.nan),
+                         np.where(n_in > 0, f_in / np.where(n_in > 0, n_in, 1), np.nan),
+                         n_out / v_out if v_out > 0 else np.full(len(centers), np.nan)], axis=1), delimiter=",",
+               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
+
+
+# Reduced snapshots keep the contacts against the gap a in fixed bins of GAP_BIN_R R from GAP_RANGE_R[0] R to
+# GAP_RANGE_R[1] R (an edge at a = 0 exactly; the rupture distance of 74.2 nl at R = 2.381 mm is 0.18 R), per
+# coarse cell of COARSE x COARSE analysis nodes (2R x 2R), so that the band chosen later from the averaged
+# fields can select them.
+GAP_BIN_R, GAP_RANGE_R, COARSE = 1e-3, (-50, 250), 4
+
+
+def gap_edges(cfg):
+    """The fixed bin edges of the reduced contact histograms [m]."""
+    return np.arange(GAP_RANGE_R[0], GAP_RANGE_R[1] + 1) * GAP_BIN_R * cfg["R"]
+
+
+def closure_radii(cfg, step_over_R=2.0):
+    """The cylinders r0 [m] of the torque balance: from the inner wall to beyond the split, step_over_R R apart."""
+    return np.arange(cfg["Ri"] + step_over_R * cfg["R"], cfg["Rs"] + 3 * cfg["R"], step_over_R * cfg["R"])
+
+
+def _coarse_cells(grid, points):
+    """The coarse cell (COARSE x COARSE nodes) of the nearest analysis node of each point, -1 off the grid."""
+    on, i, k = _nearest_node(grid, points)
+    return np.where(on, (i // COARSE) * -(-len(grid.z) // COARSE) + k // COARSE, -1)
+
+
 def reduce_snapshot(snap_path, cfg, out_path):
     """The coarse-grained fields of one snapshot on the analysis grid of cfg, in float32, written to
     out_path (npz; about 1 MB for Gladkyy's cell, where a snapshot is about 40 MB): rho, j (r, theta,
     z), sig_c (3 x 3) and the kinetic moment S = sum m v (x) v K (3 x 3; cylindrical components), t,
-    and the contact numbers. What analyse_reduced averages, for runs whose snapshots are taken in
-    several sessions (a run in segments) and do not outlive them."""
+    and the contact numbers; the contacts against the gap (gap_n, gap_f: count and sum of |F| per coarse
+    cell and gap bin, the last row for all contacts, on the grid or not; gap_outside: contacts beyond
+    the bins' range) and the torque balance of the cylinders closure_radii(cfg) counted contact by
+    contact (closure_walls: walls_inside by contact point and by centre, closure_crossing:
+    crossing_torque; snapshots with the wall torques only). What analyse_reduced averages, for runs
+    whose snapshots are taken in several sessions (a run in segments) and do not outlive them."""
     d = dict(np.load(snap_path))
     grid = analysis_grid(cfg)
     rho, j = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])
     sig_c = cg.contact_stress(grid, d["xP"], d["xI"], d["F"])
     S = cg.kinetic_stress(grid, d["x"], d["v"], d["m"], lambda r, z: np.zeros_like(r))
     contacts = contact_numbers([d])
+    edges = gap_edges(cfg)
+    cells = -(-len(grid.r) // COARSE) * -(-len(grid.z) // COARSE)
+    cell = _coarse_cells(grid, (d["xP"] + d["xI"]) / 2) if len(d["gap"]) else np.zeros(0, int)
+    cell = np.where(cell < 0, cells, cell)  # off the grid: counted in the last row only
+    b = np.searchsorted(edges, d["gap"], side="right") - 1
+    inside = (b >= 0) & (b < len(edges) - 1)
+    force = np.linalg.norm(d["F"], axis=1) if len(d["gap"]) else np.zeros(0)
+    gap_n = np.zeros((cells + 1, len(edges) - 1))
+    gap_f = np.zeros_like(gap_n)
+    np.add.at(gap_n, (cell[inside], b[inside]), 1.0)
+    np.add.at(gap_f, (cell[inside], b[inside]), force[inside])
+    gap_n[cells] += gap_n[:cells].sum(axis=0)
+    gap_f[cells] += gap_f[:cells].sum(axis=0)
+    extra = {}
+    if "static_Tz" in d:
+        r0s = closure_radii(cfg)
+        extra = {"closure_walls": np.array([walls_inside([d], r0) for r0 in r0s]), "closure_crossing": np.array([crossing_torque([d], r0) for r0 in r0s])}
     tmp = out_path + ".tmp"
     with open(tmp, "wb") as f:
         np.savez_compressed(f, rho=rho.astype(np.float32), j=j.astype(np.float32), sig_c=sig_c.astype(np.float32), S=S.astype(np.float32),
                             t=float(d["t"]), mechanical_per_particle=contacts["mechanical_per_particle"],
-                            separated_bridges_per_particle=contacts["separated_bridges_per_particle"])
+                            separated_bridges_per_particle=contacts["separated_bridges_per_particle"],
+                            gap_n=gap_n.astype(np.int32), gap_f=gap_f.astype(np.float32), gap_outside=int((~inside).sum()), **extra)
     os.replace(tmp, out_path)
 
 
-def analyse_reduced(rundir, gamma_dot_min=None, heights=5):
+def analyse_reduced(rundir, gamma_dot_min=None, heights=5, outdir=None, run=None):
     """analyse() from the reduced snapshots cg_*.npz of rundir (reduce_snapshot) and its run.json:
-    the same fits (mu, c and their variants, band centres and widths) and profiles; not the
-    statistics that need every contact (contacts against the gap, the torque balance of cylinders).
-    The kinetic stress is taken relative to the mean velocity at the grid node (Weinhart et al. 2012:
-    <S> - j U - U j + rho U U, U = omega r e_theta) instead of at each particle: the two differ by
-    the kernel average of (omega(r_i) - omega(r))^2 r^2, second order in the kernel width."""
-    with open(os.path.join(rundir, "run.json")) as f:
-        run = json.load(f)
+    the same fits (mu, c and their variants, band centres and widths), profiles, contacts against the
+    gap (fixed bins, see reduce_snapshot) and the torque balance of cylinders counted contact by contact;
+    not the CG torque fluxes, which need every contact. The kinetic stress is taken relative to the mean
+    velocity at the grid node (Weinhart et al. 2012: <S> - j U - U j + rho U U, U = omega r e_theta)
+    instead of at each particle: the two differ by the kernel average of (omega(r_i) - omega(r))^2 r^2,
+    second order in the kernel width. outdir: where fits.json and the profiles go (default rundir);
+    run: the run's dict instead of rundir/run.json (interim)."""
+    if run is None:
+        with open(os.path.join(rundir, "run.json")) as f:
+            run = json.load(f)
+    outdir = rundir if outdir is None else outdir
     cfg = run["cfg"]
     files = sorted(glob.glob(os.path.join(rundir, "cg_*.npz")))
     if not files:
@@ -220,12 +277,79 @@ def analyse_reduced(rundir, gamma_dot_min=None, heights=5):
                contact_numbers={"mechanical_per_particle": float(np.mean(mech)), "mechanical_std": float(np.std(mech)),
                                 "separated_bridges_per_particle": float(np.mean([float(r["separated_bridges_per_particle"]) for r in red]))},
                conventions=dict(CONVENTIONS, kinetic_stress="relative to the mean velocity at the grid node (analyse_reduced)",
-                                torque="torque_Nm: on the rotating walls from their contacts, mean of the second half of the run"))
-    out["conventions"].pop("contacts_vs_a")
-    with open(os.path.join(rundir, "fits.json"), "w") as fh:
+                                torque="torque_Nm: on the rotating walls from their contacts, mean of the second half of the run; "
+                                       "torque_closure: contact by contact only (the CG flux needs every contact)",
+                                contacts_vs_a="as analyse, in fixed bins of %g R from %g R to %g R; a contact is in the band by the "
+                                              "share of band nodes in its coarse cell of %d x %d nodes" % (GAP_BIN_R, GAP_RANGE_R[0] * GAP_BIN_R,
+                                                                                                     GAP_RANGE_R[1] * GAP_BIN_R, COARSE, COARSE)))
+    if all("gap_n" in r for r in red):
+        out.update(_reduced_contacts(outdir, grid, red, f["band"], f["bulk"], cfg))
+    else:
+        out["conventions"].pop("contacts_vs_a")
+    if all("closure_walls" in r for r in red):
+        walls = np.mean([r["closure_walls"] for r in red], axis=0)
+        crossing = np.mean([r["closure_crossing"] for r in red], axis=0)
+        out["torque_closure"] = [{"r0_m": float(r0), "walls_inside_Nm": float(w[0]), "walls_centre_inside_Nm": float(w[1]), "crossing_Nm": float(c),
+                                  "crossing_over_walls": float(c / w[0]) if w[0] else None, "cg_w_over_walls": None, "cg_w4_over_walls": None}
+                                 for r0, w, c in zip(closure_radii(cfg), walls, crossing)]
+    with open(os.path.join(outdir, "fits.json"), "w") as fh:
         json.dump(out, fh, indent=1, default=float)
-    _write_profiles(rundir, grid, rho, f, cfg)
+    _write_profiles(outdir, grid, rho, f, cfg)
     return out
+
+
+def interim(keep, outdir=None):
+    """The fits of a run in segments before it ends (analyse_reduced of its reduced snapshots so far),
+    from what run_segment keeps in `keep`: state.npz (configuration, progress), torque.csv and
+    cg_*.npz. The torques are the means of the records since the first snapshot (those of the second
+    half of the run when it ends). Writes fits.json, profiles and run.json to outdir (default
+    keep/interim); returns the fits with done_steps, steps and t_s of the run so far."""
+    outdir = os.path.join(keep, "interim") if outdir is None else outdir
+    with np.load(os.path.join(keep, "state.npz")) as d:
+        meta, flowing = json.loads(str(d["meta"])), len(d["ids_flowing"])
+    files = sorted(glob.glob(os.path.join(keep, "cg_*.npz")))
+    if not files:
+        raise ValueError("interim: no reduced snapshots (cg_*.npz) in %s yet" % keep)
+    with np.load(files[0]) as first:
+        t_first = float(first["t"])
+    T = np.loadtxt(os.path.join(keep, "torque.csv"), delimiter=",", skiprows=1, ndmin=2)
+    late = T[T[:, 0] >= t_first - 1e-9]
+    cfg = meta["cfg"]
+    steps = int(cfg["run_s"] / meta["dt_s"])
+    run = {"cfg": cfg, "config": meta["config"], "case": meta["case"], "Omega_rad_s": 2 * np.pi / cfg["period"], "steps": steps,
+           "torque_rotating_Nm": float(late[:, 1].mean()), "torque_static_Nm": float(late[:, 2].mean()),
+           "particle_steps_per_s": flowing * meta["done_steps"] / meta["wall_s"] if meta.get("wall_s") else 0.0}
+    os.makedirs(outdir, exist_ok=True)
+    with open(os.path.join(outdir, "run.json"), "w") as f:
+        json.dump(dict(run, done_steps=meta["done_steps"], t_s=meta["time_s"]), f, indent=1)
+    out = analyse_reduced(keep, outdir=outdir, run=run)
+    return dict(out, done_steps=meta["done_steps"], steps=steps, t_s=meta["time_s"])
+
+
+def _reduced_contacts(rundir, grid, red, band, bulk, cfg):
+    """contacts_vs_a.csv and the wet-contact densities from the reduced histograms (reduce_snapshot): a
+    coarse cell's contacts count for the band and for the bulk outside it by the volume shares of its
+    nodes there. Returns the entries of fits.json."""
+    vol = grid.volume_elements()
+    nr, nz = -(-len(grid.r) // COARSE), -(-len(grid.z) // COARSE)
+    share = np.zeros((2, nr * nz))
+    for c, m in enumerate((band, bulk & ~band)):
+        vc = np.zeros((nr * COARSE, nz * COARSE))
+        vc[:vol.shape[0], :vol.shape[1]] = np.where(m, vol, 0.0)
+        share[c] = vc.reshape(nr, COARSE, nz, COARSE).sum(axis=(1, 3)).ravel()
+    total = np.zeros((nr * COARSE, nz * COARSE))
+    total[:vol.shape[0], :vol.shape[1]] = vol
+    share /= np.maximum(total.reshape(nr, COARSE, nz, COARSE).sum(axis=(1, 3)).ravel(), 1e-300)
+    n = np.mean([r["gap_n"] for r in red], axis=0)
+    fsum = np.mean([r["gap_f"] for r in red], axis=0)
+    edges = gap_edges(cfg)
+    h = np.stack([n[-1], fsum[-1], share[0] @ n[:-1], share[0] @ fsum[:-1], share[1] @ n[:-1]])
+    _write_contacts_vs_a(rundir, grid, band, bulk, (edges[:-1] + edges[1:]) / 2, h)
+    v_in, v_out = vol[band].sum(), vol[bulk & ~band].sum()
+    separated = edges[:-1] >= 0
+    return {"wet_contact_density_band_1_m3": float(h[2][separated].sum() / v_in) if v_in > 0 else None,
+            "wet_contact_density_outside_1_m3": float(h[4][separated].sum() / v_out) if v_out > 0 else None,
+            "contacts_beyond_gap_bins_per_snapshot": float(np.mean([int(r["gap_outside"]) for r in red]))}
 
 
 def _fit_reduced(grid, red, run, gamma_dot_min=None, heights=5):
@@ -452,7 +576,7 @@ def torque_closure(data, cfg, w, omega_at, step_over_R=2.0):
     if not all("static_Tz" in d for d in data):
         return []
     out = []
-    for r0 in np.arange(cfg["Ri"] + step_over_R * cfg["R"], cfg["Rs"] + 3 * cfg["R"], step_over_R * cfg["R"]):
+    for r0 in closure_radii(cfg, step_over_R):
         measured, by_centre = walls_inside(data, r0)
         row = {"r0_m": float(r0), "walls_inside_Nm": measured, "walls_centre_inside_Nm": by_centre, "crossing_Nm": crossing_torque(data, r0),
                "cg_w_Nm": -cylinder_flux(data, r0, w, omega_at), "cg_w4_Nm": -cylinder_flux(data, r0, w / 4, omega_at)}
@@ -538,13 +662,19 @@ def _region(d, grid, band, bulk):
     node decides)."""
     if len(d["gap"]) == 0:
         return np.zeros(0, int)
+    on, i, k = _nearest_node(grid, (d["xP"] + d["xI"]) / 2)
+    return np.where(on & band[i, k], 1, np.where(on & bulk[i, k], 2, 0))
+
+
+def _nearest_node(grid, points):
+    """For points (n, 3): whether each lies on the grid (within half a node spacing of it) and the (i, k)
+    of its nearest node."""
     dr, dz = grid.r[1] - grid.r[0], grid.z[1] - grid.z[0]
-    mid = (d["xP"] + d["xI"]) / 2
-    fi, fk = (np.hypot(mid[:, 0], mid[:, 1]) - grid.r[0]) / dr, (mid[:, 2] - grid.z[0]) / dz
+    fi, fk = (np.hypot(points[:, 0], points[:, 1]) - grid.r[0]) / dr, (points[:, 2] - grid.z[0]) / dz
     on = (fi > -0.5) & (fi < len(grid.r) - 0.5) & (fk > -0.5) & (fk < len(grid.z) - 0.5)
     i = np.clip(np.round(fi).astype(int), 0, len(grid.r) - 1)
     k = np.clip(np.round(fk).astype(int), 0, len(grid.z) - 1)
-    return np.where(on & band[i, k], 1, np.where(on & bulk[i, k], 2, 0))
+    return on, i, k
 
 
 def _wet_density(data, grid, band, bulk, cfg):

@@ -219,3 +219,111 @@ def test_report_of_reduced_fits(tmp_path):
     assert "0.134 ± 0.001 (0.13)" in row and "0.76 ± 0.04 (0.0)" in row
     assert "110.60 / -110.00 / n/a" in row
     assert "| baseline_gladkyy_slope | 0.130 (fixed), 0.91 ± 0.02 (40) |" in md
+
+
+def _contact_snapshot(path, grid, cells, gaps, forces, t, rng):
+    """A snapshot whose contacts have their branch middles at the nodes (4 ic + 1, 4 kc + 1) of the coarse
+    cells `cells`, the given gaps [m] and |F| [N], between flowing spheres placed at both ends of each
+    branch; plus wall contacts (partner point not a sphere) and wall torques, for the torque balance."""
+    mid = np.array([(grid.r[4 * ic + 1], grid.z[4 * kc + 1]) for ic, kc in cells])
+    theta = rng.uniform(0, 2 * np.pi, len(mid))
+    c = np.stack([mid[:, 0] * np.cos(theta), mid[:, 0] * np.sin(theta), mid[:, 1]], axis=1)
+    u = rng.normal(size=(len(mid), 3))
+    u = 0.6 * CFG["R"] * u / np.linalg.norm(u, axis=1)[:, None]
+    xP, xI = c - u, c + u
+    F = np.asarray(forces)[:, None] * u / np.linalg.norm(u, axis=1)[:, None]
+    wall_x = np.array([[0.011, 0.0, 0.005], [0.0, 0.03, 0.001], [0.05, 0.0, 0.001]])  # inner wall, bottom inside and outside Rs
+    wall_c = wall_x + np.array([[0.0005, 0.0, 0.0], [0.0, 0.0, -0.0005], [0.0, 0.0, -0.0005]])
+    wall_F = rng.normal(size=(3, 3)) * 1e-3
+    x = np.concatenate([xP, xI, wall_x])
+    rz = rng.uniform(0.01, 0.06, (5, 2))
+    np.savez(path, x=x, v=np.zeros_like(x), m=np.full(len(x), 1e-6), xP=np.concatenate([xP, wall_x]), xI=np.concatenate([xI, wall_c]),
+             F=np.concatenate([F, wall_F]), gap=np.concatenate([gaps, [-1e-6] * 3]), t=t,
+             static_rz=rz, static_Tz=rng.normal(size=5) * 1e-4, rotating_rz=rz[::-1], rotating_Tz=rng.normal(size=5) * 1e-4)
+
+
+def test_reduced_contacts(tmp_path):
+    # Contacts of known gaps and forces in known coarse cells (2 x 2 R): the reduced histograms must hold
+    # them exactly, and a band chosen afterwards must select them by their cells: with the band = coarse
+    # row ic = 2 and the bulk outside it = rows 5-6, the band density times the band's volume gives the
+    # contacts of row 2, the outside one those of rows 5-6 (row 8: neither). Bins: gap_edges, edges at
+    # integer multiples of 1e-3 R, gaps at bin centres.
+    grid = cellanalysis.analysis_grid(CFG)
+    edges = cellanalysis.gap_edges(CFG)
+    centre = lambda k: (edges[50 + k] + edges[51 + k]) / 2  # bin k above a = 0 (k < 0: overlap)
+    cells = [(2, 1)] * 3 + [(2, 5)] * 2 + [(5, 2)] * 4 + [(6, 6)] + [(8, 3)] * 2
+    gaps = [centre(-3), centre(10), centre(10), centre(10), centre(40), centre(-3), centre(10), centre(40), centre(40), centre(100), centre(10), centre(0)]
+    forces = np.arange(1, 13) * 1e-4
+    rng = np.random.default_rng(3)
+    _contact_snapshot(tmp_path / "snap.npz", grid, cells, gaps, forces, 0.0, rng)
+    cellanalysis.reduce_snapshot(str(tmp_path / "snap.npz"), CFG, str(tmp_path / "cg.npz"))
+    red = dict(np.load(tmp_path / "cg.npz"))
+    all_n, all_f = red["gap_n"][-1], red["gap_f"][-1]
+    for k in (-3, 0, 10, 40, 100):
+        sel = [g == centre(k) for g in gaps]
+        assert all_n[50 + k] == sum(sel)
+        assert all_f[50 + k] == pytest.approx(forces[sel].sum(), rel=1e-6)  # float32 sums
+    assert all_n[49] == 3 and all_n.sum() == 15  # the wall contacts (off the grid) at -1e-6 m = -0.5e-3 R, in bin -1
+    band = np.zeros(grid.R.shape, bool)
+    band[8:12] = True  # coarse row 2
+    bulk = band.copy()
+    bulk[20:28] = True  # coarse rows 5-6
+    out = cellanalysis._reduced_contacts(str(tmp_path), grid, [red], band, bulk, CFG)
+    A = np.genfromtxt(tmp_path / "contacts_vs_a.csv", delimiter=",", names=True)
+    vol = grid.volume_elements()
+    v_in, v_out = vol[band].sum(), vol[bulk & ~band].sum()
+    assert A["band_contacts_per_m3"].sum() * v_in == pytest.approx(5, rel=1e-12)
+    assert A["outside_contacts_per_m3"].sum() * v_out == pytest.approx(5, rel=1e-12)
+    assert out["wet_contact_density_band_1_m3"] * v_in == pytest.approx(4, rel=1e-12)
+    assert out["wet_contact_density_outside_1_m3"] * v_out == pytest.approx(4, rel=1e-12)
+    k = 50 + 10
+    assert A["band_mean_force_N"][k] == pytest.approx(forces[1:4].mean(), rel=1e-6)
+    assert A["contacts_per_snapshot"][k] == 5 and out["contacts_beyond_gap_bins_per_snapshot"] == 0
+
+
+def test_reduced_torque_closure(rundir, tmp_path):
+    # The torque balance kept in reduced snapshots (contact by contact, per snapshot) and averaged by
+    # analyse_reduced must equal torque_closure over the same two snapshots (walls inside by contact point
+    # and by centre, crossing torque) to float64 round-off.
+    grid = cellanalysis.analysis_grid(CFG)
+    red_dir = tmp_path / "reduced"
+    red_dir.mkdir()
+    (red_dir / "run.json").write_text((rundir / "run.json").read_text())
+    rng = np.random.default_rng(5)
+    cells = [(ic, kc) for ic in range(1, 11) for kc in range(0, 7)]
+    data = []
+    for s in range(2):
+        snap = tmp_path / ("snap_%d.npz" % s)
+        _contact_snapshot(snap, grid, cells, rng.uniform(-1e-5, 1e-4, len(cells)), rng.uniform(1e-4, 1e-3, len(cells)), float(s), rng)
+        with np.load(snap) as d:
+            data.append(dict(d))
+        cellanalysis.reduce_snapshot(str(snap), CFG, str(red_dir / ("cg_%03d.npz" % (s + 1))))
+    full = cellanalysis.torque_closure(data, CFG, grid.w, lambda r, z: np.zeros_like(r))
+    reduced = cellanalysis.analyse_reduced(str(red_dir))["torque_closure"]
+    assert len(full) == len(reduced) > 5
+    assert any(abs(row["crossing_Nm"]) > 0 for row in full)
+    for a, b in zip(full, reduced):
+        for key in ("r0_m", "walls_inside_Nm", "walls_centre_inside_Nm", "crossing_Nm"):
+            assert b[key] == pytest.approx(a[key], rel=1e-12, abs=1e-18)
+
+
+def test_interim(rundir, tmp_path):
+    # A run in segments before its end (what run_segment keeps: state.npz, torque.csv, cg_*.npz): interim
+    # must give the fits of analyse_reduced on the same reduced snapshots, and the torques as the means of
+    # the records since the first snapshot (t = 0 here; the record at t = -1 s is before it).
+    keep = tmp_path / "keep"
+    keep.mkdir()
+    for k, snap in enumerate(sorted(rundir.glob("snap_*.npz"))):
+        cellanalysis.reduce_snapshot(str(snap), CFG, str(keep / ("cg_%03d.npz" % (k + 1))))
+    cfg = dict(CFG, run_s=4.0)
+    meta = {"cfg": cfg, "config": "synthetic", "case": "none", "dt_s": 1e-3, "done_steps": 2000, "wall_s": 10.0, "time_s": 2.0}
+    np.savez(keep / "state.npz", meta=json.dumps(meta), ids_flowing=np.arange(5))
+    np.savetxt(keep / "torque.csv", [(-1.0, -9.0, 9.0), (0.5, -1e-4, 2e-4), (1.5, -3e-4, 4e-4)], delimiter=",",
+               header="time_s,torque_rotating_Nm,torque_static_Nm", comments="")
+    out = cellanalysis.interim(str(keep))
+    ref = cellanalysis.analyse_reduced(str(keep), outdir=str(tmp_path), run=json.loads((rundir / "run.json").read_text()))
+    assert out["Rc_m"] == pytest.approx(ref["Rc_m"], rel=1e-12) and out["W_m"] == pytest.approx(ref["W_m"], rel=1e-12)
+    assert out["torque_Nm"] == pytest.approx(-2e-4, rel=1e-12) and out["torque_static_Nm"] == pytest.approx(3e-4, rel=1e-12)
+    assert (out["done_steps"], out["steps"], out["t_s"]) == (2000, 4000, 2.0)
+    assert out["particle_steps_per_s"] == pytest.approx(5 * 2000 / 10.0)
+    assert os.path.getsize(keep / "interim" / "profiles.csv") > 0
