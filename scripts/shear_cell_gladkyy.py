@@ -11,6 +11,7 @@
 # data/shear_cell_runs/gladkyy_size/CASE/{state.npz, torque.csv, cg_NNN.npz} (what the next segment continues
 # from, and the CG fields of each snapshot; run.json and fits.json from cellanalysis.analyse_reduced when
 # the run is complete) and results/shear_cell/gladkyy_size/CASE/ (the snapshots themselves).
+import glob
 import json
 import os
 import sys
@@ -31,15 +32,21 @@ if case == "status":
     fits = {}
     for c in shearcell.ALL_CASES:
         keep = os.path.join(root, c)
-        if os.path.exists(os.path.join(keep, "state.npz")) and any(f.startswith("cg_") for f in os.listdir(keep)):
+        if os.path.exists(os.path.join(keep, "state.npz")) and glob.glob(os.path.join(keep, "cg_*.npz")):
             fits[c] = cellanalysis.interim(keep)
+
+    def num(v, err=None, fmt="%.3f", scale=1.0):
+        if v is None:
+            return "n/a"
+        return (fmt + " ± " + fmt) % (scale * v, scale * err) if err is not None else fmt % (scale * v)
+
     print("| case | steps | t [s] | snapshots | mu | c [Pa] | c at mu = %.2f [Pa] | torque [mN m] | contacts per sphere |" % cellanalysis.GLADKYY_MU)
     print("|---|---|---|---|---|---|---|---|---|")
     for c, f in fits.items():
         g = f["fit_variants"].get("baseline_gladkyy_slope", {})
-        print("| %s | %d of %d | %.3f | %d | %.3f ± %.3f | %.2f ± %.2f | %s | %.1f | %.3f |" % (
-            c, f["done_steps"], f["steps"], f["t_s"], f["snapshots"], f["mu"], f["mu_err"], f["c_Pa"], f["c_err_Pa"],
-            "%.2f ± %.2f" % (g["c_Pa"], g["c_err_Pa"]) if "c_Pa" in g else "n/a", 1e3 * abs(f["torque_Nm"]),
+        print("| %s | %d of %d | %.3f | %d | %s | %s | %s | %s | %.3f |" % (
+            c, f["done_steps"], f["steps"], f["t_s"], f["snapshots"], num(f["mu"], f["mu_err"]), num(f["c_Pa"], f["c_err_Pa"], "%.2f"),
+            num(g.get("c_Pa"), g.get("c_err_Pa"), "%.2f"), num(None if f["torque_Nm"] is None else abs(f["torque_Nm"]), None, "%.1f", 1e3),
             f["contact_numbers"]["mechanical_per_particle"]))
     if "dry" in fits:
         dry = os.path.join(root, "dry", "interim", "profiles.csv")

@@ -158,7 +158,7 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     n_in, _ = np.histogram(gaps[where == 1], edges)
     f_in, _ = np.histogram(gaps[where == 1], edges, weights=forces[where == 1])
     n_out, _ = np.histogram(gaps[where == 2], edges)
-    _write_contacts_vs_a(rundir, grid, band, bulk, centers, np.stack([counts, fsum, n_in, f_in, n_out]) / len(data))
+    _write_contacts_vs_a(rundir, grid, band, bulk, centers, np.stack([counts, fsum, n_in, f_in, n_out]), len(data))
     wet_in, wet_out = _wet_density(data, grid, band, bulk, cfg)
     contacts = contact_numbers(data)
 
@@ -172,18 +172,18 @@ def analyse(rundir, gamma_dot_min=None, heights=5):
     return out
 
 
-def _write_contacts_vs_a(rundir, grid, band, bulk, centers, h):
-    """contacts_vs_a.csv from the per-snapshot histograms h over the bins `centers` [m]: h[0] all
-    contacts, h[1] the sum of their |F|, h[2], h[3] the same of the contacts in the band, h[4] the
-    contacts in the bulk outside it."""
+def _write_contacts_vs_a(rundir, grid, band, bulk, centers, h, snapshots):
+    """contacts_vs_a.csv from the histograms h over the bins `centers` [m], summed over `snapshots`:
+    h[0] all contacts, h[1] the sum of their |F|, h[2], h[3] the same of the contacts in the band,
+    h[4] the contacts in the bulk outside it."""
     cell_vol = grid.volume_elements()
     v_in, v_out = cell_vol[band].sum(), cell_vol[bulk & ~band].sum()
     counts, fsum, n_in, f_in, n_out = h
     np.savetxt(os.path.join(rundir, "contacts_vs_a.csv"),
-               np.stack([centers, counts, np.where(counts > 0, fsum / np.where(counts > 0, counts, 1), np.nan),
-                         n_in / v_in if v_in > 0 else np.full(len(centers), np.nan),
+               np.stack([centers, counts / snapshots, np.where(counts > 0, fsum / np.where(counts > 0, counts, 1), np.nan),
+                         n_in / snapshots / v_in if v_in > 0 else np.full(len(centers), np.nan),
                          np.where(n_in > 0, f_in / np.where(n_in > 0, n_in, 1), np.nan),
-                         n_out / v_out if v_out > 0 else np.full(len(centers), np.nan)], axis=1), delimiter=",",
+                         n_out / snapshots / v_out if v_out > 0 else np.full(len(centers), np.nan)], axis=1), delimiter=",",
                header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
 
 
@@ -230,7 +230,7 @@ def reduce_snapshot(snap_path, cfg, out_path):
     cells = -(-len(grid.r) // COARSE) * -(-len(grid.z) // COARSE)
     cell = _coarse_cells(grid, (d["xP"] + d["xI"]) / 2) if len(d["gap"]) else np.zeros(0, int)
     cell = np.where(cell < 0, cells, cell)  # off the grid: counted in the last row only
-    b = np.searchsorted(edges, d["gap"], side="right") - 1
+    b = np.searchsorted(edges, d["gap"], side="left") - 1  # bins (lo, hi]: a = 0 is a contact, as in contact_numbers
     inside = (b >= 0) & (b < len(edges) - 1)
     force = np.linalg.norm(d["F"], axis=1) if len(d["gap"]) else np.zeros(0)
     gap_n = np.zeros((cells + 1, len(edges) - 1))
@@ -302,7 +302,7 @@ def interim(keep, outdir=None):
     """The fits of a run in segments before it ends (analyse_reduced of its reduced snapshots so far),
     from what run_segment keeps in `keep`: state.npz (configuration, progress), torque.csv and
     cg_*.npz. The torques are the means of the records since the first snapshot (those of the second
-    half of the run when it ends). Writes fits.json, profiles and run.json to outdir (default
+    half of the run when it ends; None before the first save after it). Writes fits.json, profiles and run.json to outdir (default
     keep/interim); returns the fits with done_steps, steps and t_s of the run so far."""
     outdir = os.path.join(keep, "interim") if outdir is None else outdir
     with np.load(os.path.join(keep, "state.npz")) as d:
@@ -316,8 +316,9 @@ def interim(keep, outdir=None):
     late = T[T[:, 0] >= t_first - 1e-9]
     cfg = meta["cfg"]
     steps = int(cfg["run_s"] / meta["dt_s"])
+    # torque.csv grows at each save: until the first save after the first snapshot there is no record yet
     run = {"cfg": cfg, "config": meta["config"], "case": meta["case"], "Omega_rad_s": 2 * np.pi / cfg["period"], "steps": steps,
-           "torque_rotating_Nm": float(late[:, 1].mean()), "torque_static_Nm": float(late[:, 2].mean()),
+           "torque_rotating_Nm": float(late[:, 1].mean()) if len(late) else None, "torque_static_Nm": float(late[:, 2].mean()) if len(late) else None,
            "particle_steps_per_s": flowing * meta["done_steps"] / meta["wall_s"] if meta.get("wall_s") else 0.0}
     os.makedirs(outdir, exist_ok=True)
     with open(os.path.join(outdir, "run.json"), "w") as f:
@@ -340,15 +341,15 @@ def _reduced_contacts(rundir, grid, red, band, bulk, cfg):
     total = np.zeros((nr * COARSE, nz * COARSE))
     total[:vol.shape[0], :vol.shape[1]] = vol
     share /= np.maximum(total.reshape(nr, COARSE, nz, COARSE).sum(axis=(1, 3)).ravel(), 1e-300)
-    n = np.mean([r["gap_n"] for r in red], axis=0)
-    fsum = np.mean([r["gap_f"] for r in red], axis=0)
+    n = np.sum([r["gap_n"] for r in red], axis=0, dtype=float)
+    fsum = np.sum([r["gap_f"] for r in red], axis=0, dtype=float)
     edges = gap_edges(cfg)
     h = np.stack([n[-1], fsum[-1], share[0] @ n[:-1], share[0] @ fsum[:-1], share[1] @ n[:-1]])
-    _write_contacts_vs_a(rundir, grid, band, bulk, (edges[:-1] + edges[1:]) / 2, h)
+    _write_contacts_vs_a(rundir, grid, band, bulk, (edges[:-1] + edges[1:]) / 2, h, len(red))
     v_in, v_out = vol[band].sum(), vol[bulk & ~band].sum()
-    separated = edges[:-1] >= 0
-    return {"wet_contact_density_band_1_m3": float(h[2][separated].sum() / v_in) if v_in > 0 else None,
-            "wet_contact_density_outside_1_m3": float(h[4][separated].sum() / v_out) if v_out > 0 else None,
+    separated = edges[:-1] >= 0  # bins (lo, hi] above a = 0: a > 0, as _wet_density
+    return {"wet_contact_density_band_1_m3": float(h[2][separated].sum() / len(red) / v_in) if v_in > 0 else None,
+            "wet_contact_density_outside_1_m3": float(h[4][separated].sum() / len(red) / v_out) if v_out > 0 else None,
             "contacts_beyond_gap_bins_per_snapshot": float(np.mean([int(r["gap_outside"]) for r in red]))}
 
 
@@ -608,7 +609,7 @@ def gap_classes(csv_path):
     tol = 1e-6 * half
     # A bin that straddles a = 0 holds both touching contacts and the shortest bridges: its own class.
     classes = {"contact": a + half <= tol, "straddling": (a - half < -tol) & (a + half > tol),
-               "short": (a - half >= -tol) & (a <= a_crit / 2), "long": a > a_crit / 2}
+               "short": (a - half >= -tol) & (a <= a_crit / 2), "long": (a - half >= -tol) & (a > a_crit / 2)}
     out = {"a_crit_m": a_crit}
     for name, m in classes.items():
         out[name + "_per_snapshot"] = float(np.nansum(n[m]))

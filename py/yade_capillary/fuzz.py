@@ -15,7 +15,11 @@ Everything else is counted as a failure: ``nan``, ``inf``, ``negative``, ``nonze
 ``other_exception`` (any other exception type), ``inconsistent`` (``bridge()`` and ``force()``
 disagree on accepting the same bridge), ``hang`` (no answer within ``timeout`` seconds) and ``crash``
 (the process died). Calls run in a worker process (a hang in C++ cannot be interrupted in-process):
-on a hang or crash the worker is replaced and the run goes on with the next bridge.
+on a hang or crash the worker is replaced and the run goes on with the next bridge. A worker is a
+fresh interpreter (``python3 -m yade_capillary.fuzz``), neither a fork of the caller (a fork copies the
+locks that the caller's threads may hold at that moment, pytest's or BLAS's, and a worker that inherits
+a held lock waits forever: 19 false hangs in one run of the full suite) nor a multiprocessing spawn
+(which runs the caller's main script again: a script calling ``run`` at top level, or yade itself).
 
 Deterministic: bridge i is drawn from ``numpy.random.default_rng([seed, i])``, independent of the
 chunking. Half of the bridges pass ``extrapolate=True``.
@@ -25,9 +29,12 @@ chunking. Half of the bridges pass ``extrapolate=True``.
     print(fuzz.format_report(report)); assert not fuzz.failures(report)
 """
 import math
-import multiprocessing as mp
+import os
 import re
+import subprocess
+import sys
 import time
+from multiprocessing.connection import Connection
 
 import numpy as np
 
@@ -198,6 +205,42 @@ def check_bridge(spec, monotone, counts):
         _classify_error(counts, e, spec, "force(NaN gap)")
 
 
+class _Worker:
+    """A worker process (``python3 -m yade_capillary.fuzz FD SEED START STOP``) that evaluates bridges
+    start..stop-1 and sends each one's counts through the pipe whose write end is its FD."""
+
+    def __init__(self, seed, start, stop):
+        read, write = os.pipe()
+        package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # where this yade_capillary lives
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join([package] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
+        python = sys.executable if os.path.basename(sys.executable).startswith("python") else "/usr/bin/python3"  # not yade's launcher
+        self.proc = subprocess.Popen([python, "-m", __name__, str(write), str(seed), str(start), str(stop)], pass_fds=(write,), env=env,
+                                     stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
+        os.close(write)
+        self.conn, self.pid = Connection(read, writable=False), self.proc.pid
+        # The interpreter's start and imports are not a bridge's time: wait for the worker's first word.
+        try:
+            if self.conn.poll(300) and self.conn.recv() == "ready":
+                return
+        except EOFError:
+            pass
+        self.close()
+        raise RuntimeError("fuzz: a worker process did not start (%s -m %s, exit code %s)" % (python, __name__, self.exitcode))
+
+    def is_alive(self):
+        return self.proc.poll() is None
+
+    @property
+    def exitcode(self):
+        return self.proc.poll()
+
+    def close(self):
+        if self.is_alive():
+            self.proc.kill()
+        self.proc.wait()
+        self.conn.close()
+
+
 def _worker(conn, seed, start, stop):
     monotone = {m["name"]: bool(m["monotone"]) for m in kernels.models()}
     for i in range(start, stop):
@@ -250,17 +293,10 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
     total = _Counts()
     hung = []  # (index, spec) of every hang and crash
     by_model = {}  # model -> failure counts
-    # Workers come from a forkserver (a fresh interpreter), not forked from this process: a fork copies
-    # the locks that this process's library threads (pytest's, BLAS's) may hold at that moment, and a
-    # worker that inherits a held lock waits forever (false hangs in the full Python suite).
-    ctx = mp.get_context("forkserver")
-    ctx.set_forkserver_preload([__name__])
     i = 0
     while i < n:
-        parent, child = ctx.Pipe(duplex=False)
-        proc = ctx.Process(target=_worker, args=(child, seed, i, n), daemon=True)
-        proc.start()
-        child.close()
+        proc = _Worker(seed, i, n)
+        parent = proc.conn
         while i < n:
             if not _answer_within(parent, proc, timeout):
                 spec = bridge_spec(seed, i)
@@ -295,10 +331,7 @@ def run(n_evaluations, seed=1, timeout=0.5, progress=None):
             i += 1
             if progress and i % 1000 == 0:
                 progress(i, n)
-        if proc.is_alive():
-            proc.kill()
-        proc.join()
-        parent.close()
+        proc.close()
         i += 1 if i < n else 0  # skip the bridge that hung or crashed
     return dict(counts=total.c, examples=total.examples, seconds=time.time() - t0, seed=seed,
                 hung=hung, by_model=by_model)
@@ -321,3 +354,9 @@ def format_report(report):
         for e in report["examples"].get(k, []):
             lines.append("  e.g. %s: %s" % (k, e))
     return "\n".join(lines)
+
+
+if __name__ == "__main__":  # a worker of _Worker: FD SEED START STOP
+    out = Connection(int(sys.argv[1]), readable=False)
+    out.send("ready")
+    _worker(out, *(int(a) for a in sys.argv[2:5]))

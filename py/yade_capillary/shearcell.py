@@ -615,7 +615,7 @@ def report(config_dir, particles=200000, duration_s=5.0):
         with open(os.path.join(d, "run.json")) as f:
             run_info = json.load(f)
         cfg = run_info["cfg"]
-        rc = [(b["z_m"], b["Rc_m"], b["W_m"]) for b in fit["band_fits"] if b["Rc_m"] is not None]
+        rc = [(b["z_m"], b["Rc_m"], b["W_m"]) for b in fit["band_fits"] if b.get("Rc_m") is not None]  # not the heights whose fit failed
         dt = cfg["dt_over_tc"] * cfg["tc"]
         rows.append({
             "case": case, "mu": fit["mu"], "mu_err": fit["mu_err"], "c_Pa": fit["c_Pa"], "c_err_Pa": fit["c_err_Pa"],
@@ -647,8 +647,9 @@ def report(config_dir, particles=200000, duration_s=5.0):
     md = ["| case | mu (Gladkyy) | c [Pa] (Gladkyy) | mu, c [Pa], gamma_dot threshold | Rc top / mean [mm] (surface law) | W mean [mm] | torque rotating / static / CG at Rs [mN m] | run |",
           "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        md.append("| %s | %.3f ± %.3f (%.2f) | %.2f ± %.2f (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %s / %s / %s | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
-            r["case"], r["mu"], r["mu_err"], r["mu_gladkyy"], r["c_Pa"], r["c_err_Pa"], r["c_gladkyy_Pa"],
+        md.append("| %s | %s (%.2f) | %s (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %s / %s / %s | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
+            r["case"], num(r["mu"], "%.3f") + ("" if r["mu"] is None else " ± %.3f" % r["mu_err"]), r["mu_gladkyy"],
+            num(r["c_Pa"], "%.2f") + ("" if r["c_Pa"] is None else " ± %.2f" % r["c_err_Pa"]), r["c_gladkyy_Pa"],
             num(r["mu_threshold"], "%.3f"), num(r["c_threshold_Pa"], "%.2f"), r["band_points_threshold"],
             num(r["Rc_top_mm"], "%.1f"), num(r["Rc_mean_mm"], "%.1f"), r["Rc_surface_law_mm"], num(r["W_mean_mm"], "%.1f"),
             mN(r["torque_rotating_Nm"]), mN(r["torque_static_Nm"]), mN(r["torque_cg_at_Rs_Nm"]),

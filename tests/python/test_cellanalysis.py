@@ -245,9 +245,10 @@ def _contact_snapshot(path, grid, cells, gaps, forces, t, rng):
 def test_reduced_contacts(tmp_path):
     # Contacts of known gaps and forces in known coarse cells (2 x 2 R): the reduced histograms must hold
     # them exactly, and a band chosen afterwards must select them by their cells: with the band = coarse
-    # row ic = 2 and the bulk outside it = rows 5-6, the band density times the band's volume gives the
-    # contacts of row 2, the outside one those of rows 5-6 (row 8: neither). Bins: gap_edges, edges at
-    # integer multiples of 1e-3 R, gaps at bin centres.
+    # row ic = 2 and the first two of the four node rows of coarse row 5, and the bulk = rows 2, 5 and 6,
+    # the band density times the band's volume gives the contacts of row 2 plus the share s of row 5's
+    # (s = the volume of its band nodes over the volume of its nodes), the outside one the rest of rows
+    # 5-6 (row 8: neither). Bins: gap_edges, edges at integer multiples of 1e-3 R, gaps at bin centres.
     grid = cellanalysis.analysis_grid(CFG)
     edges = cellanalysis.gap_edges(CFG)
     centre = lambda k: (edges[50 + k] + edges[51 + k]) / 2  # bin k above a = 0 (k < 0: overlap)
@@ -266,18 +267,21 @@ def test_reduced_contacts(tmp_path):
     assert all_n[49] == 3 and all_n.sum() == 15  # the wall contacts (off the grid) at -1e-6 m = -0.5e-3 R, in bin -1
     band = np.zeros(grid.R.shape, bool)
     band[8:12] = True  # coarse row 2
+    band[20:22] = True  # half the node rows of coarse row 5
     bulk = band.copy()
     bulk[20:28] = True  # coarse rows 5-6
     out = cellanalysis._reduced_contacts(str(tmp_path), grid, [red], band, bulk, CFG)
     A = np.genfromtxt(tmp_path / "contacts_vs_a.csv", delimiter=",", names=True)
     vol = grid.volume_elements()
     v_in, v_out = vol[band].sum(), vol[bulk & ~band].sum()
-    assert A["band_contacts_per_m3"].sum() * v_in == pytest.approx(5, rel=1e-12)
-    assert A["outside_contacts_per_m3"].sum() * v_out == pytest.approx(5, rel=1e-12)
-    assert out["wet_contact_density_band_1_m3"] * v_in == pytest.approx(4, rel=1e-12)
-    assert out["wet_contact_density_outside_1_m3"] * v_out == pytest.approx(4, rel=1e-12)
+    sh = vol[20:22, 8:12].sum() / vol[20:24, 8:12].sum()  # of the cell (5, 2): nodes k = 8..11
+    assert 0.4 < sh < 0.5
+    assert A["band_contacts_per_m3"].sum() * v_in == pytest.approx(5 + 4 * sh, rel=1e-12)
+    assert A["outside_contacts_per_m3"].sum() * v_out == pytest.approx(4 * (1 - sh) + 1, rel=1e-12)
+    assert out["wet_contact_density_band_1_m3"] * v_in == pytest.approx(4 + 3 * sh, rel=1e-12)  # (5, 2): 3 of 4 separated
+    assert out["wet_contact_density_outside_1_m3"] * v_out == pytest.approx(3 * (1 - sh) + 1, rel=1e-12)
     k = 50 + 10
-    assert A["band_mean_force_N"][k] == pytest.approx(forces[1:4].mean(), rel=1e-6)
+    assert A["band_mean_force_N"][k] == pytest.approx((forces[1:4].sum() + sh * forces[6]) / (3 + sh), rel=1e-6)  # row 2's, share of (5, 2)'s
     assert A["contacts_per_snapshot"][k] == 5 and out["contacts_beyond_gap_bins_per_snapshot"] == 0
 
 
@@ -327,3 +331,7 @@ def test_interim(rundir, tmp_path):
     assert (out["done_steps"], out["steps"], out["t_s"]) == (2000, 4000, 2.0)
     assert out["particle_steps_per_s"] == pytest.approx(5 * 2000 / 10.0)
     assert os.path.getsize(keep / "interim" / "profiles.csv") > 0
+    # before the first save after the first snapshot there is no torque record of the window: None, not NaN
+    np.savetxt(keep / "torque.csv", [(-1.0, -9.0, 9.0)], delimiter=",", header="time_s,torque_rotating_Nm,torque_static_Nm", comments="")
+    out = cellanalysis.interim(str(keep))
+    assert out["torque_Nm"] is None and out["torque_static_Nm"] is None and out["Rc_m"] == pytest.approx(ref["Rc_m"], rel=1e-12)

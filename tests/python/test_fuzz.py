@@ -21,3 +21,24 @@ def test_fuzz_ci_size():
     assert report["counts"]["evaluations"] >= 99990
     assert report["counts"]["accepted"] > 0.3 * report["counts"]["bridges"], "the fuzz must mostly hit valid bridges"
     assert not fuzz.failures(report), fuzz.format_report(report)
+
+
+def test_worker_hang_is_detected():
+    # A worker (a fresh interpreter) that stops answering: stopped by SIGSTOP, it uses no CPU, so the
+    # wall-time limit (20 timeouts) must report it within about 1 s at timeout = 0.05 s; killed, it is
+    # reported as dead.
+    import os
+    import signal
+    import time
+    w = fuzz._Worker(1, 0, 10 ** 9)
+    try:
+        os.kill(w.pid, signal.SIGSTOP)
+        while w.conn.poll(0.2):  # the answers sent before the stop
+            w.conn.recv()
+        t0 = time.time()
+        assert not fuzz._answer_within(w.conn, w, 0.05)
+        assert time.time() - t0 < 5
+        assert w.is_alive()
+    finally:
+        w.close()
+    assert not w.is_alive() and w.exitcode == -signal.SIGKILL

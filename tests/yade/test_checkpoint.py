@@ -67,6 +67,8 @@ print("state: %d bodies, %d real interactions, %.2f MB" % (len(O.bodies), len(re
 
 info_b = shearcell.load_state(path)
 law = shearcell._law()
+# rupture distance and volume of every saved bridge, as rebuilt (used below)
+sCrit = {(I.id1, I.id2): (I.phys.sCrit, I.phys.Vb) for I in O.interactions if I.isReal and I.phys.active}
 realB, nB, volB = state()
 ck.true(realA == realB, "the same real interactions and bridges after load_state (%d / %d)" % (len(realA), len(realB)))
 ck.true(nA == nB, "nBridges %d after load_state, %d saved" % (nB, nA))
@@ -97,7 +99,6 @@ for bad in (-1e-06, float("nan")):
 # normal (a stretch twice the excess) it restores all nA bridges, and the next step breaks this one
 # (liquidReleased grows by at least its Vb).
 d = dict(np.load(path))
-sCrit = {(I.id1, I.id2): (I.phys.sCrit, I.phys.Vb) for I in O.interactions if I.isReal and I.phys.active}
 
 
 def gap(x, i, j):
