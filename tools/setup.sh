@@ -16,7 +16,7 @@ say() { printf '[setup] %s\n' "$*"; }
 # --- 1. Debian packages --------------------------------------------------------------------
 PKGS=(yade cmake g++ make libboost-all-dev libeigen3-dev python3-dev python3-numpy libopenmpi-dev
       libgl-dev libglu1-mesa-dev libcgal-dev libgmp-dev libmpfr-dev libgtest-dev libbenchmark-dev
-      pybind11-dev python3-pytest python3-scipy python3-matplotlib binutils bzip2)
+      pybind11-dev python3-pytest python3-scipy python3-matplotlib python3-threadpoolctl binutils bzip2)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
