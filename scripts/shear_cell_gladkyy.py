@@ -38,18 +38,14 @@ if case == "status":
         if os.path.exists(os.path.join(keep, "state.npz")) and glob.glob(os.path.join(keep, "cg_*.npz")):
             fits[c] = cellanalysis.interim(keep)
 
-    def num(v, err=None, fmt="%.3f", scale=1.0):
-        if v is None:
-            return "n/a"
-        return (fmt + " ± " + fmt) % (scale * v, scale * err) if err is not None else fmt % (scale * v)
-
     print("| case | steps | t [s] | snapshots | mu | c [Pa] | c at mu = %.2f [Pa] | torque [mN m] | contacts per sphere |" % cellanalysis.GLADKYY_MU)
     print("|---|---|---|---|---|---|---|---|---|")
     for c, f in fits.items():
         g = f["fit_variants"].get("baseline_gladkyy_slope", {})
         print("| %s | %d of %d | %.3f | %d | %s | %s | %s | %s | %.3f |" % (
-            c, f["done_steps"], f["steps"], f["t_s"], f["snapshots"], num(f["mu"], f["mu_err"]), num(f["c_Pa"], f["c_err_Pa"], "%.2f"),
-            num(g.get("c_Pa"), g.get("c_err_Pa"), "%.2f"), num(None if f["torque_Nm"] is None else abs(f["torque_Nm"]), None, "%.1f", 1e3),
+            c, f["done_steps"], f["steps"], f["t_s"], f["snapshots"], shearcell.fmt_value(f["mu"], f["mu_err"]),
+            shearcell.fmt_value(f["c_Pa"], f["c_err_Pa"], "%.2f"), shearcell.fmt_value(g.get("c_Pa"), g.get("c_err_Pa"), "%.2f"),
+            shearcell.fmt_value(None if f["torque_Nm"] is None else abs(f["torque_Nm"]), None, "%.1f", 1e3),
             f["contact_numbers"]["mechanical_per_particle"]))
     if "dry" in fits:
         dry = os.path.join(root, "dry", "interim", "profiles.csv")

@@ -600,6 +600,13 @@ def surface_band_centre(cfg):
     return cfg["Rs"] * (1 - (cfg["H"] / cfg["Rs"]) ** 2.5)
 
 
+def fmt_value(v, err=None, fmt="%.3f", scale=1.0):
+    """A table entry: v (and ± err) times scale in format fmt, "n/a" for a value that could not be had (None)."""
+    if v is None:
+        return "n/a"
+    return (fmt + " ± " + fmt) % (scale * v, scale * err) if err is not None else fmt % (scale * v)
+
+
 def report(config_dir, particles=200000, duration_s=5.0):
     """Markdown and CSV comparison of every analysed case in config_dir (fits.json, run.json) with
     Gladkyy 2014 and the surface law for Rc; the cost of a run of `particles` for `duration_s` is
@@ -638,21 +645,14 @@ def report(config_dir, particles=200000, duration_s=5.0):
         for r in rows:
             f.write(",".join("" if r[k] is None else str(r[k]) for k in keys) + "\n")
 
-    def num(v, fmt):
-        return "n/a" if v is None else fmt % v
-
-    def mN(v):
-        return num(None if v is None else 1e3 * v, "%.2f")
-
     md = ["| case | mu (Gladkyy) | c [Pa] (Gladkyy) | mu, c [Pa], gamma_dot threshold | Rc top / mean [mm] (surface law) | W mean [mm] | torque rotating / static / CG at Rs [mN m] | run |",
           "|---|---|---|---|---|---|---|---|"]
     for r in rows:
         md.append("| %s | %s (%.2f) | %s (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %s / %s / %s | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
-            r["case"], num(r["mu"], "%.3f") + ("" if r["mu"] is None else " ± %.3f" % r["mu_err"]), r["mu_gladkyy"],
-            num(r["c_Pa"], "%.2f") + ("" if r["c_Pa"] is None else " ± %.2f" % r["c_err_Pa"]), r["c_gladkyy_Pa"],
-            num(r["mu_threshold"], "%.3f"), num(r["c_threshold_Pa"], "%.2f"), r["band_points_threshold"],
-            num(r["Rc_top_mm"], "%.1f"), num(r["Rc_mean_mm"], "%.1f"), r["Rc_surface_law_mm"], num(r["W_mean_mm"], "%.1f"),
-            mN(r["torque_rotating_Nm"]), mN(r["torque_static_Nm"]), mN(r["torque_cg_at_Rs_Nm"]),
+            r["case"], fmt_value(r["mu"], r["mu_err"]), r["mu_gladkyy"], fmt_value(r["c_Pa"], r["c_err_Pa"], "%.2f"), r["c_gladkyy_Pa"],
+            fmt_value(r["mu_threshold"]), fmt_value(r["c_threshold_Pa"], None, "%.2f"), r["band_points_threshold"],
+            fmt_value(r["Rc_top_mm"], None, "%.1f"), fmt_value(r["Rc_mean_mm"], None, "%.1f"), r["Rc_surface_law_mm"], fmt_value(r["W_mean_mm"], None, "%.1f"),
+            *(fmt_value(r[k], None, "%.2f", 1e3) for k in ("torque_rotating_Nm", "torque_static_Nm", "torque_cg_at_Rs_Nm")),
             r["rotation_s"], r["steps"], r["wall_s"], r["particle_steps_per_s"], particles, duration_s, r["projected_h"]))
     md += _variant_tables(config_dir)
     text = "\n".join(md) + "\n"
