@@ -204,10 +204,15 @@ def closure_radii(cfg, step_over_R=2.0):
     return np.arange(cfg["Ri"] + step_over_R * cfg["R"], cfg["Rs"] + 3 * cfg["R"], step_over_R * cfg["R"])
 
 
+def _coarse_shape(grid):
+    """Coarse cells (COARSE x COARSE nodes, the last ones in r and z possibly partial) in r and in z."""
+    return -(-len(grid.r) // COARSE), -(-len(grid.z) // COARSE)
+
+
 def _coarse_cells(grid, points):
-    """The coarse cell (COARSE x COARSE nodes) of the nearest analysis node of each point, -1 off the grid."""
+    """The coarse cell (index ic * cells in z + kc) of the nearest analysis node of each point, -1 off the grid."""
     on, i, k = _nearest_node(grid, points)
-    return np.where(on, (i // COARSE) * -(-len(grid.z) // COARSE) + k // COARSE, -1)
+    return np.where(on, (i // COARSE) * _coarse_shape(grid)[1] + k // COARSE, -1)
 
 
 def reduce_snapshot(snap_path, cfg, out_path):
@@ -227,7 +232,7 @@ def reduce_snapshot(snap_path, cfg, out_path):
     S = cg.kinetic_stress(grid, d["x"], d["v"], d["m"], lambda r, z: np.zeros_like(r))
     contacts = contact_numbers([d])
     edges = gap_edges(cfg)
-    cells = -(-len(grid.r) // COARSE) * -(-len(grid.z) // COARSE)
+    cells = int(np.prod(_coarse_shape(grid)))
     cell = _coarse_cells(grid, (d["xP"] + d["xI"]) / 2) if len(d["gap"]) else np.zeros(0, int)
     cell = np.where(cell < 0, cells, cell)  # off the grid: counted in the last row only
     b = np.searchsorted(edges, d["gap"], side="left") - 1  # bins (lo, hi]: a = 0 is a contact, as in contact_numbers
@@ -332,7 +337,7 @@ def _reduced_contacts(rundir, grid, red, band, bulk, cfg):
     coarse cell's contacts count for the band and for the bulk outside it by the volume shares of its
     nodes there. Returns the entries of fits.json."""
     vol = grid.volume_elements()
-    nr, nz = -(-len(grid.r) // COARSE), -(-len(grid.z) // COARSE)
+    nr, nz = _coarse_shape(grid)
     share = np.zeros((2, nr * nz))
     for c, m in enumerate((band, bulk & ~band)):
         vc = np.zeros((nr * COARSE, nz * COARSE))
