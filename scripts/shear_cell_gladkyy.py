@@ -37,7 +37,6 @@ if case == "status":
         keep = os.path.join(root, c)
         if os.path.exists(os.path.join(keep, "state.npz")) and glob.glob(os.path.join(keep, "cg_*.npz")):
             fits[c] = cellanalysis.interim(keep)
-
     print("| case | steps | t [s] | snapshots | mu | c [Pa] | c at mu = %.2f [Pa] | torque [mN m] | contacts per sphere |" % cellanalysis.GLADKYY_MU)
     print("|---|---|---|---|---|---|---|---|---|")
     for c, f in fits.items():

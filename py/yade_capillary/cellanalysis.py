@@ -338,14 +338,13 @@ def _reduced_contacts(rundir, grid, red, band, bulk, cfg):
     nodes there. Returns the entries of fits.json."""
     vol = grid.volume_elements()
     nr, nz = _coarse_shape(grid)
-    share = np.zeros((2, nr * nz))
-    for c, m in enumerate((band, bulk & ~band)):
-        vc = np.zeros((nr * COARSE, nz * COARSE))
-        vc[:vol.shape[0], :vol.shape[1]] = np.where(m, vol, 0.0)
-        share[c] = vc.reshape(nr, COARSE, nz, COARSE).sum(axis=(1, 3)).ravel()
-    total = np.zeros((nr * COARSE, nz * COARSE))
-    total[:vol.shape[0], :vol.shape[1]] = vol
-    share /= np.maximum(total.reshape(nr, COARSE, nz, COARSE).sum(axis=(1, 3)).ravel(), 1e-300)
+
+    def per_cell(v):  # node values summed over each coarse cell, in _coarse_cells' order
+        padded = np.zeros((nr * COARSE, nz * COARSE))
+        padded[:v.shape[0], :v.shape[1]] = v
+        return padded.reshape(nr, COARSE, nz, COARSE).sum(axis=(1, 3)).ravel()
+
+    share = np.stack([per_cell(np.where(m, vol, 0.0)) for m in (band, bulk & ~band)]) / np.maximum(per_cell(vol), 1e-300)
     n = np.sum([r["gap_n"] for r in red], axis=0, dtype=float)
     fsum = np.sum([r["gap_f"] for r in red], axis=0, dtype=float)
     edges = gap_edges(cfg)

@@ -516,7 +516,7 @@ def load_state(path, case=None, loop="fused"):
     # A save follows Newton's half of a step, so a bridge may have been stretched past its rupture distance
     # by that step (the law breaks it at the next one, as in the uninterrupted run): by at most the
     # relative displacement of the step, |v2 - v1| dt of the saved velocities.
-    stretch = np.linalg.norm(vel[pairs[:, 1]] - vel[pairs[:, 0]], axis=1) * O.dt if len(pairs) else np.zeros(0)
+    stretch = np.linalg.norm(vel[pairs[:, 1]] - vel[pairs[:, 0]], axis=1) * O.dt  # pairs: (n, 2), also for n = 0
     for k, (a, b) in enumerate(pairs.tolist()):
         I = createInteraction(a, b)
         if active[k]:
