@@ -1,6 +1,6 @@
 # Speed probe of a Gladkyy-size wet shear cell (about 170 000 flowing spheres, R = 2.381 mm, the
-# validation cell enlarged 2.2 times): 1000 timed steps with PendularLoop (with and without its records, in
-# interleaved chunks), and the projected wall
+# validation cell enlarged 2.2 times): 1000 timed steps with PendularLoop (with its defaults, without skipFar
+# and without its records, in interleaved chunks), and the projected wall
 # time of Gladkyy's 5 s of rotation at the configuration's time step (tc/20). A benchmark, not a
 # test. Run with the threads to project for, e.g.
 #   build/yade-capillary -j2 -n -x scripts/benchmark_gladkyy_probe.py [steps]
@@ -17,6 +17,8 @@ print("    %.3f s per step, %.3g particle-steps/s; %g s of rotation at dt = %.3g
 if "s_per_step_without_records" in r:
     print("    without PendularLoop's records (keepRecords=False, chunks interleaved): %.3f s per step; with/without %.2f"
           % (r["s_per_step_without_records"], r["s_per_step"] / r["s_per_step_without_records"]))
+    print("    without the list of entries to visit (skipFar=False): %.3f s per step; with/without %.2f"
+          % (r["s_per_step_without_skip"], r["s_per_step"] / r["s_per_step_without_skip"]))
     print("    PendularLoop, last step: %s; sorting the container %.2f ms per step" % (", ".join("%s %d" % kv for kv in r["counts"].items()), r["sort_ms_per_step"]))
 total = sum(r["engines_ns_per_step"].values())
 for name, ns in sorted(r["engines_ns_per_step"].items(), key=lambda kv: -kv[1]):

@@ -1,6 +1,7 @@
 #include "PendularLoop.hpp"
 
 #include <pkg/common/Facet.hpp>
+#include <pkg/common/InsertionSortCollider.hpp>
 #include <pkg/common/Wall.hpp>
 #include <pkg/dem/Ig2_Sphere_Sphere_ScGeom.hpp>
 
@@ -190,6 +191,8 @@ void PendularLoop::gather(int threads)
 	if (fullCheck) {
 		epoch             = near;
 		epochDisplacement = 0;
+		epochRmin         = rmin;
+		++epochCount;
 	} else
 		epochDisplacement = math::max(epochDisplacement, move);
 }
@@ -225,6 +228,7 @@ void PendularLoop::action()
 	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
 		const auto ts = Clock::now();
 		sortInteractions();
+		workValid = false;
 		sortTime += ns(ts, Clock::now());
 	}
 	sortPending = false;
@@ -250,127 +254,72 @@ void PendularLoop::action()
 	toRecord.resize(threads);
 	toForget.resize(threads);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
-	long       disorder  = 0;
-	// Static schedule: each thread gets the same interactions in every run, so a run with a given
-	// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
-	// spread evenly over the container (one half per thread left one thread idle a third of the time).
+	// Between two runs of the collider and within one epoch of the bound on potential pairs' gaps
+	// (see gather), the container is the one of the last pass, and a potential pair whose bound exceeds
+	// what the bodies can move in the whole epoch is skipped at every step: the pass visits only the
+	// entries of `work` (built after the last full pass), in the container's order, so that the forces
+	// are summed in the same order and the skipped entries are counted as the full pass counts them.
+	// Anything else that changes the container drops the list: the Python paths through syncScene,
+	// sorting, another scene.
+	const long colliderRuns = colliderRunCount();
+	const bool fast = skipFar && recording && skipApart && !fullCheck && workValid && workEpoch == epochCount && workColliderRuns == colliderRuns
+	        && workContainer == scene->interactions.get() && long(workSize) == size && (size == 0 || workFirst == interactions[0].get());
+	long disorder = 0;
+	if (fast) {
+		const long m = long(work.size());
 #ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder)
+#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded)
 #endif
-	{
-		// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
-		long     before    = -2;
-		uint64_t beforeKey = 0;
+		{
+			Counts c;
 #ifdef YADE_OPENMP
 #pragma omp for schedule(static, 1024)
 #endif
-		for (long i = 0; i < size; ++i) {
-			// One entry; after it, its slot holds its ids whichever way it went.
-			[&]() {
-				// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
-				// cached, the geometry and physics of a real one that has no record.
-				if (i + 2 * prefetchAhead < size) {
-					const Slot& ahead = slots[i + 2 * prefetchAhead];
-					const auto& J     = interactions[i + 2 * prefetchAhead];
-					if (ahead.same(J)) {
-						if (ahead.recorded()) prefetchObject(&records[ahead.record]);
-						else if (!ahead.potential()) prefetchObject(J.get());
-					} else
-						prefetchObject(J.get());
-				}
-				if (i + prefetchAhead < size) {
-					const Slot& ahead = slots[i + prefetchAhead];
-					const auto& J     = interactions[i + prefetchAhead];
-					if (ahead.same(J)) {
-						if (ahead.record == Slot::none) {
-							if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
-							if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-						} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
-							prefetchObject(&particles[ahead.id1]);
-							prefetchObject(&particles[ahead.id2]);
-							const int t = threadNum();
-							__builtin_prefetch(&threadForce[t][ahead.id1], 1);
-							__builtin_prefetch(&threadForce[t][ahead.id2], 1);
-							__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
-							__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
-						}
-					}
-				}
-				const shared_ptr<Interaction>& I    = interactions[i];
-				Slot&                          slot = slots[i];
-				if (!slot.same(I)) {
-					// Another interaction than in the last step: new, or moved here by an erasure, with its record.
-					slot.record = Slot::none;
-					if (!recordOf.empty()) {
-						const auto it = recordOf.find(I.get());
-						if (it != recordOf.end()) {
-							slot.interaction = I;
-							slot.record      = it->second;
-							slot.id1         = records[it->second].id1;
-							slot.id2         = records[it->second].id2;
-						}
-					}
-				}
-				if (slot.same(I)) {
-					if (slot.recorded()) {
-						Record&         rec = records[slot.record];
-						const Particle& p1  = particles[slot.id1]; // the record's bodies
-						const Particle& p2  = particles[slot.id2];
-						if (p1.kind == pendularSphere && p2.kind == pendularSphere && p1.subdomain == scene->subdomain && p2.subdomain == scene->subdomain) {
-							++fused;
-							++recorded;
-							if (!recordStep(rec, r, threadNum())) {
-								scene->interactions->requestErase(I);
-								toForget[threadNum()].push_back(slot.record);
-								slot.record   = Slot::potentialPair;
-								slot.gapBound = -std::numeric_limits<float>::infinity();
-							}
-							return;
-						}
-						// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-						store(rec, *I);
-						toForget[threadNum()].push_back(slot.record);
-						slot.record = Slot::none;
-					} else if (skipApart && slot.potential()) {
-						// A potential interaction of two PendularMat spheres seen in an earlier step (same
-						// object, so the same ids; it became real only in this loop, which updates the slot).
-						// Apart by more than the bodies can have moved since its last check: nothing to read
-						// but the slot (see gather).
-						if (!fullCheck && slot.gapBound > 2 * epochDisplacement) {
-							++fused;
-							++apart;
-							++bounded;
-							return;
-						}
-						// Else one distance check on the gathered data, without reading the Interaction.
-						const Near& q1 = near[slot.id1];
-						const Near& q2 = near[slot.id2];
-						if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
-							const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
-							const Real d2   = (q2.pos - q1.pos).squaredNorm();
-							if (d2 > sumR * sumR) {
-								slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * epochDisplacement);
-								++fused;
-								++apart;
-								return;
-							}
-						}
-					}
-				}
-				step(I, r, fused, dispatchedCount);
-				// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the
-				// control block, one more cache line per interaction and step.
-				if (!slot.same(I)) slot.interaction = I;
-				slot.id1       = I->getId1();
-				slot.id2       = I->getId2();
-				slot.record    = I->isReal() ? Slot::none : Slot::potentialPair;
-				slot.gapBound  = -std::numeric_limits<float>::infinity();
-				if (recording && !slot.potential() && recordable(*I, r)) toRecord[threadNum()].push_back(i);
-			}();
-			const uint64_t key = slots[i].key();
-			if (i == before + 1 && key < beforeKey) ++disorder;
-			before    = i;
-			beforeKey = key;
+			for (long k = 0; k < m; ++k)
+				visit(work[k], k + prefetchAhead < m ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < m ? work[k + 2 * prefetchAhead] : -1, r,
+				      skipApart, recording, c);
+			fused += c.fused;
+			dispatchedCount += c.dispatched;
+			apart += c.apart;
+			recorded += c.recorded;
+			bounded += c.bounded;
+		}
+		const long skipped = size - m;
+		fused += skipped;
+		apart += skipped;
+		bounded += skipped;
+		nSkipped = skipped;
+		++nFastPasses;
+		disorder = nDisorder; // the container's order has not changed
+	} else {
+		nSkipped = 0;
+		// Static schedule: each thread gets the same interactions in every run, so a run with a given
+		// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
+		// spread evenly over the container (one half per thread left one thread idle a third of the time).
+#ifdef YADE_OPENMP
+#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder)
+#endif
+		{
+			Counts c;
+			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
+			long     before    = -2;
+			uint64_t beforeKey = 0;
+#ifdef YADE_OPENMP
+#pragma omp for schedule(static, 1024)
+#endif
+			for (long i = 0; i < size; ++i) {
+				visit(i, i + prefetchAhead < size ? i + prefetchAhead : -1, i + 2 * prefetchAhead < size ? i + 2 * prefetchAhead : -1, r, skipApart,
+				      recording, c);
+				const uint64_t key = slots[i].key();
+				if (i == before + 1 && key < beforeKey) ++disorder;
+				before    = i;
+				beforeKey = key;
+			}
+			fused += c.fused;
+			dispatchedCount += c.dispatched;
+			apart += c.apart;
+			recorded += c.recorded;
+			bounded += c.bounded;
 		}
 	}
 	nDisorder     = disorder;
@@ -381,12 +330,155 @@ void PendularLoop::action()
 	nRecorded     = recorded;
 	nBounded      = bounded;
 	settleRecords();
+	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns);
 	stale         = !recordOf.empty();
 	const auto t2 = Clock::now();
 	flushForces(threads);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
+}
+
+// One entry of the container; after it, its slot holds its ids whichever way it went. ahead1, ahead2:
+// the entries the pass visits prefetchAhead and 2 prefetchAhead after this one (-1: none).
+void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bool skipApart, bool recording, Counts& c)
+{
+	const auto& interactions = *scene->interactions;
+	// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
+	// cached, the geometry and physics of a real one that has no record.
+	if (ahead2 >= 0) {
+		const Slot& ahead = slots[ahead2];
+		const auto& J     = interactions[ahead2];
+		if (ahead.same(J)) {
+			if (ahead.recorded()) prefetchObject(&records[ahead.record]);
+			else if (!ahead.potential())
+				prefetchObject(J.get());
+		} else
+			prefetchObject(J.get());
+	}
+	if (ahead1 >= 0) {
+		const Slot& ahead = slots[ahead1];
+		const auto& J     = interactions[ahead1];
+		if (ahead.same(J)) {
+			if (ahead.record == Slot::none) {
+				if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
+				if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
+			} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
+				prefetchObject(&particles[ahead.id1]);
+				prefetchObject(&particles[ahead.id2]);
+				const int t = threadNum();
+				__builtin_prefetch(&threadForce[t][ahead.id1], 1);
+				__builtin_prefetch(&threadForce[t][ahead.id2], 1);
+				__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
+				__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
+			}
+		}
+	}
+	const shared_ptr<Interaction>& I    = interactions[i];
+	Slot&                          slot = slots[i];
+	if (!slot.same(I)) {
+		// Another interaction than in the last step: new, or moved here by an erasure, with its record.
+		slot.record = Slot::none;
+		if (!recordOf.empty()) {
+			const auto it = recordOf.find(I.get());
+			if (it != recordOf.end()) {
+				slot.interaction = I;
+				slot.record      = it->second;
+				slot.id1         = records[it->second].id1;
+				slot.id2         = records[it->second].id2;
+			}
+		}
+	}
+	if (slot.same(I)) {
+		if (slot.recorded()) {
+			Record&         rec = records[slot.record];
+			const Particle& p1  = particles[slot.id1]; // the record's bodies
+			const Particle& p2  = particles[slot.id2];
+			if (p1.kind == pendularSphere && p2.kind == pendularSphere && p1.subdomain == scene->subdomain && p2.subdomain == scene->subdomain) {
+				++c.fused;
+				++c.recorded;
+				if (!recordStep(rec, r, threadNum())) {
+					scene->interactions->requestErase(I);
+					toForget[threadNum()].push_back(slot.record);
+					slot.record   = Slot::potentialPair;
+					slot.gapBound = -std::numeric_limits<float>::infinity();
+				}
+				return;
+			}
+			// A body is gone or has changed (material, shape, subdomain): the objects decide again.
+			store(rec, *I);
+			toForget[threadNum()].push_back(slot.record);
+			slot.record = Slot::none;
+		} else if (skipApart && slot.potential()) {
+			// A potential interaction of two PendularMat spheres seen in an earlier step (same object, so
+			// the same ids; it became real only in this loop, which updates the slot). Apart by more than
+			// the bodies can have moved since its last check: nothing to read but the slot (see gather).
+			if (!fullCheck && slot.gapBound > 2 * epochDisplacement) {
+				++c.fused;
+				++c.apart;
+				++c.bounded;
+				return;
+			}
+			// Else one distance check on the gathered data, without reading the Interaction.
+			const Near& q1 = near[slot.id1];
+			const Near& q2 = near[slot.id2];
+			if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
+				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
+				const Real d2   = (q2.pos - q1.pos).squaredNorm();
+				if (d2 > sumR * sumR) {
+					slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * epochDisplacement);
+					++c.fused;
+					++c.apart;
+					return;
+				}
+			}
+		}
+	}
+	step(I, r, c.fused, c.dispatched);
+	// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the control
+	// block, one more cache line per interaction and step.
+	if (!slot.same(I)) slot.interaction = I;
+	slot.id1      = I->getId1();
+	slot.id2      = I->getId2();
+	slot.record   = I->isReal() ? Slot::none : Slot::potentialPair;
+	slot.gapBound = -std::numeric_limits<float>::infinity();
+	if (recording && !slot.potential() && recordable(*I, r)) toRecord[threadNum()].push_back(i);
+}
+
+// How many times the scene's colliders have run (InsertionSortCollider::numAction counts the steps it
+// is activated in): the only engine that recordsAllowed lets change the container during a run.
+long PendularLoop::colliderRunCount() const
+{
+	long runs = 0;
+	for (const auto& e : scene->engines)
+		if (const auto* collider = dynamic_cast<const InsertionSortCollider*>(e.get())) runs += collider->numAction;
+	return runs;
+}
+
+// After a full pass: the entries that a pass of this epoch may have to visit, every one but the
+// potential pairs whose bound on the gap exceeds twice the largest move of the epoch (epochMove of the
+// smallest radius; the epoch ends before a body moves that far), which the full pass would skip at
+// every step of the epoch. use = false: no list (the next pass is a full one).
+void PendularLoop::buildWork(bool use, long colliderRuns)
+{
+	work.clear();
+	workValid = use;
+	if (!use) return;
+	const auto& interactions = *scene->interactions;
+	const long  size         = long(scene->interactions->size());
+	// gather ends an epoch unless move < epochMove * rmin, the same product: each skipped slot has
+	// gapBound >= 2 (epochMove rmin) > 2 epochDisplacement at every step of the epoch.
+	const Real threshold = 2 * (epochMove * epochRmin);
+	for (long i = 0; i < size; ++i) {
+		const Slot& slot = slots[i];
+		if (slot.potential() && slot.same(interactions[i]) && Real(slot.gapBound) >= threshold) continue;
+		work.push_back(i);
+	}
+	workEpoch        = epochCount;
+	workColliderRuns = colliderRuns;
+	workContainer    = scene->interactions.get();
+	workSize         = size_t(size);
+	workFirst        = size > 0 ? interactions[0].get() : nullptr;
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the
@@ -630,6 +722,7 @@ void PendularLoop::syncObjects(bool drop)
 			store(records[entry.second], *recordInteractions[entry.second]);
 	stale = false;
 	if (!drop) return;
+	workValid = false;
 	records.clear();
 	recordInteractions.clear();
 	invariants.clear();
@@ -645,7 +738,11 @@ void PendularLoop::syncScene(Scene* scene, bool drop)
 	if (!scene) return;
 	for (const auto& e : scene->engines) {
 		auto* loop = dynamic_cast<PendularLoop*>(e.get());
-		if (!loop || loop->recordOf.empty()) continue;
+		if (!loop) continue;
+		// Whatever may have changed the container (drop) ends the list of entries to visit, also
+		// without records and from another thread (an atomic flag).
+		if (drop) loop->workValid = false;
+		if (loop->recordOf.empty()) continue;
 		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) continue;
 		loop->syncObjects(drop);
 	}

@@ -221,10 +221,10 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     """Speed probe of a Gladkyy-size cell (shearcell.GLADKYY_SIZE: about 170 000 flowing spheres plus
     the rough walls), rotating. The flowing spheres are built touching (ring lattice of 2 R, filled
     to 1.2 H: about 166 000 flowing spheres), so that contacts and bridges exist from the first steps, as in a settled cell; 100 steps
-    untimed, then `steps` timed, in chunks of `chunk` steps alternately with PendularLoop's records
-    and without (keepRecords), so that both are measured on the same cell at the same time.
-    Returns a dict: numbers of spheres and interactions, wall time per step with and without the
-    records, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
+    untimed, then `steps` timed, in chunks of `chunk` steps in turn with PendularLoop's defaults, without
+    its list of entries to visit (skipFar) and without its records (keepRecords, and so without the
+    list), so that all three are measured on the same cell at the same time.
+    Returns a dict: numbers of spheres and interactions, wall time per step in each mode, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
     step with records, ns per step of each engine (where the time goes; both modes) and the
     PendularLoop counts of the last step (real, recorded, apart, apart by the gap bound, out of order,
     sorts so far) and the time spent sorting the interaction container per step."""
@@ -239,26 +239,30 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     for e in O.engines:
         e.execTime = 0
     fused = next((e for e in O.engines if hasattr(e, "keepRecords")), None)
-    wall = {True: 0.0, False: 0.0}
-    done = {True: 0, False: 0}
-    records = True
+    # (keepRecords, skipFar) in turn, chunk by chunk: the default first.
+    modes = [(True, True), (True, False), (False, False)] if fused is not None else [(True, True)]
+    wall = dict.fromkeys(modes, 0.0)
+    done = dict.fromkeys(modes, 0)
+    k = 0
     while sum(done.values()) < steps:
         n = min(chunk, steps - sum(done.values()))
+        mode = modes[k % len(modes)]
         if fused is not None:
-            fused.keepRecords = records
+            fused.keepRecords, fused.skipFar = mode
         t0 = time.time()
         O.run(n, True)
-        wall[records] += time.time() - t0
-        done[records] += n
-        records = not records if fused is not None else True
+        wall[mode] += time.time() - t0
+        done[mode] += n
+        k += 1
     O.timingEnabled = False
-    per_step = wall[True] / done[True]
+    per_step = wall[(True, True)] / done[(True, True)]
     out = {"spheres": len(O.bodies), "flowing": len(ids["flowing"]), "real_interactions": O.interactions.countReal(),
            "interactions": len(O.interactions), "s_per_step": per_step, "particle_steps_per_s": len(ids["flowing"]) / per_step,
            "projected_h": per_step * run_s / O.dt / 3600, "run_s": run_s, "dt": O.dt, "threads": O.numThreads,
            "engines_ns_per_step": engine_times(steps)}
-    if fused is not None and done[False]:
-        out["s_per_step_without_records"] = wall[False] / done[False]
-        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nApart", "nBounded", "nDispatched", "nDisorder", "nSorts")}
+    if fused is not None and done[(False, False)] and done[(True, False)]:
+        out["s_per_step_without_records"] = wall[(False, False)] / done[(False, False)]
+        out["s_per_step_without_skip"] = wall[(True, False)] / done[(True, False)]
+        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nApart", "nBounded", "nSkipped", "nDispatched", "nDisorder", "nSorts")}
         out["sort_ms_per_step"] = fused.sortTime / 1e6 / (steps + 100)
     return out

@@ -8,7 +8,9 @@
 #   A PyRunner reads every interaction's geometry and physics every 500 steps and, once, makes one
 #   bridge inactive and one sphere 30 % larger from Python: PendularLoop keeps most interactions in its own records between
 #   steps, so what Python reads and writes must go through them (yade_capillary.objects); the run
-#   with records must be bit-identical to the one without.
+#   with records must be bit-identical to the one without. With records, between the collider's runs the
+#   pass visits only its list of entries (PendularLoop.skipFar), without it every entry: so the run
+#   with records is also the list's test, bit-identical to the full passes of the run without.
 # - yade -j2 (ctest runs this file with -j1 and with -j2), loops on one and on two threads: a
 #   body's forces are summed in another order (per thread, then across threads; the collider's
 #   parallel insertion can also change the order of interactions), so round-off (1e-16 relative)
@@ -138,6 +140,7 @@ for box in ("walls", "facets"):
                     % (tag, loop.nFused, loop.nDispatched))
             ck.true(loop.nRecorded > 0, "%s: %d interactions computed from PendularLoop's records in the last step" % (tag, loop.nRecorded))
             ck.true(loop.nBounded > 0, "%s: %d potential pairs found apart by the bound on their gap in the last step" % (tag, loop.nBounded))
+            ck.true(loop.nFastPasses > 0, "%s: %d of %d steps visited only the list of entries (skipFar)" % (tag, loop.nFastPasses, STEPS))
             ck.true([s[0] for s in snaps] == [s[0] for s in ref_snaps] and len(snaps) >= 3,
                     "%s: %d snapshots read by a PyRunner in both loops" % (tag, len(snaps)))
             # PendularLoop updates shearInc in contact only, where the law reads it (documented).
