@@ -275,9 +275,16 @@ void PendularLoop::action()
 #ifdef YADE_OPENMP
 #pragma omp for schedule(static, 1024)
 #endif
-			for (long k = 0; k < m; ++k)
+			for (long k = 0; k < m; ++k) {
+				// A third level for the list: its entries are not contiguous, so the hardware does not
+				// fetch the slots and container entries that the prefetches of visit() read.
+				if (k + 4 * prefetchAhead < m) {
+					__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
+					__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
+				}
 				visit(work[k], k + prefetchAhead < m ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < m ? work[k + 2 * prefetchAhead] : -1, r,
 				      skipApart, recording, c);
+			}
 			fused += c.fused;
 			dispatchedCount += c.dispatched;
 			apart += c.apart;
@@ -371,6 +378,9 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 				__builtin_prefetch(&threadForce[t][ahead.id2], 1);
 				__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
 				__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
+			} else if (skipApart && (fullCheck || !(ahead.gapBound > 2 * epochDisplacement))) { // a potential pair to check: its bodies
+				__builtin_prefetch(&near[ahead.id1]);
+				__builtin_prefetch(&near[ahead.id2]);
 			}
 		}
 	}
