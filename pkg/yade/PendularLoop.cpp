@@ -260,10 +260,13 @@ void PendularLoop::action()
 	// entries of `work` (built after the last full pass), in the container's order, so that the forces
 	// are summed in the same order and the skipped entries are counted as the full pass counts them.
 	// Anything else that changes the container drops the list: the Python paths through syncScene,
-	// sorting, another scene.
+	// sorting, another scene. Behind that, the first and last entries must be the interactions of the
+	// last pass (an erasure moves the last entry into its hole, an insertion appends: erasing and
+	// inserting one keeps the size, not the last entry).
 	const long colliderRuns = colliderRunCount();
 	const bool fast = skipFar && recording && skipApart && !fullCheck && workValid && workEpoch == epochCount && workColliderRuns == colliderRuns
-	        && workContainer == scene->interactions.get() && long(workSize) == size && (size == 0 || workFirst == interactions[0].get());
+	        && workContainer == scene->interactions.get() && long(workSize) == size
+	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
 	long disorder = 0;
 	if (fast) {
 		const long m = long(work.size());
@@ -488,7 +491,6 @@ void PendularLoop::buildWork(bool use, long colliderRuns)
 	workColliderRuns = colliderRuns;
 	workContainer    = scene->interactions.get();
 	workSize         = size_t(size);
-	workFirst        = size > 0 ? interactions[0].get() : nullptr;
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the

@@ -155,13 +155,12 @@ private:
 	Real                               epochRmin         = 0; // the smallest sphere radius of the epoch [m]
 	long                               epochCount        = 0;
 	// The container entries a pass of this epoch may have to visit (see buildWork), and what they were
-	// built for: the epoch, the collider's runs, the container, its size and first interaction.
+	// built for: the epoch, the collider's runs, the container and its size.
 	std::vector<long>                  work;
 	std::atomic<bool>                  workValid { false };
 	long                               workEpoch = -1, workColliderRuns = -1;
 	const InteractionContainer*        workContainer = nullptr;
 	size_t                             workSize      = 0;
-	const Interaction*                 workFirst     = nullptr;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset), their free entries, and which interaction has which (for an interaction that an erasure
@@ -204,7 +203,7 @@ public:
 		((long, nSorts, 0, Attr::readonly, "How many times the loop has sorted the interaction container [-] (see sortDisorder)."))
 		((bool, sortPending, false, Attr::hidden, "The last pass found more than sortDisorder of the container out of order: sort before the next one (saved, so that a run continued from O.save sorts where the original run does)."))
 		((Real, sortTime, 0, , "Wall time spent sorting the interaction container since this was last set to 0 [ns] (part of passTime)."))
-		((bool, skipFar, true, , "Between two runs of the collider, visit only the entries of the interaction container that a step may have to compute: the potential pairs whose bound on the gap (see nBounded) exceeds what the bodies can move before the bound is renewed are left out of a list of entries made after each full pass, so that the pass no longer reads their container entries and slots at every step. Same results bit for bit (the entries are visited in the container's order; nFused, nApart and nBounded count the skipped ones as before); only with records (keepRecords), and the list is dropped by anything that may change the container (the collider, sorting, the wrapped Python paths). False: every entry at every step."))
+		((bool, skipFar, true, , "Between two runs of the collider, visit only the entries of the interaction container that a step may have to compute: the potential pairs whose bound on the gap (see nBounded) exceeds what the bodies can move before the bound is renewed are left out of a list of entries made after each full pass, so that the pass no longer reads their container entries and slots at every step. Same results bit for bit on one thread (the entries are visited in the container's order; on several threads the entries are shared out differently, so the force sums differ by round-off; nFused, nApart and nBounded count the skipped ones as before); only with records (keepRecords), and the list is dropped by anything that may change the container (the collider, sorting, the wrapped Python paths). False: every entry at every step."))
 		((long, nSkipped, 0, Attr::readonly, "Of nBounded, the entries of the interaction container not visited at all in the last step [-] (see skipFar)."))
 		((long, nFastPasses, 0, Attr::readonly, "Steps in which the pass visited only its list of entries [-] (see skipFar)."))
 		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps (the objects I.geom and I.phys are written when read: from Python, by O.save, by YADE's utils functions); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))

@@ -10,7 +10,8 @@ that reads or changes those objects so that it calls PendularLoop.sync first:
   that the loop reads the changed objects at its next step), Interaction.geom, .phys and .isActive
   (assigning), Serializable.dict;
 * O.save and O.saveTmp, Law2_ScGeom_PendularPhys_Bridge.liquidTotals (reading);
-* YADE's utils functions written in C++ (yade._utils: getStress, setContactFriction, ...; sync and drop).
+* YADE's utils functions written in C++ (yade._utils: getStress, setContactFriction, createInteraction, ...;
+  sync and drop), also under the names that yade's launcher imported into __main__.
 
 O.bodies.erase/clear and O.interactions.erase/clear are wrapped in C++ (PendularCheck) and sync and
 drop there. Only after guard() does PendularLoop keep records (PendularLoop.readersGuarded).
@@ -65,12 +66,15 @@ def guard():
     for name in ("save", "saveTmp"):
         setattr(w.Omega, name, _calling(getattr(w.Omega, name), sync, False))
     w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals = _calling(w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals, sync, False)
-    utils = sys.modules.get("yade.utils")
+    # yade's launcher has already run `from yade.utils import *` in __main__, where scripts and PyRunner
+    # commands run: their bare names (createInteraction, getStress, ...) are rebound there as well.
+    namespaces = [m for m in (sys.modules.get("yade.utils"), sys.modules.get("__main__")) if m is not None]
     for name, f in list(vars(yade._utils).items()):
         if type(f).__name__ == "function" and type(f).__module__ == "Boost.Python":
             g = _calling(f, sync, True)
             setattr(yade._utils, name, g)
-            if utils is not None and getattr(utils, name, None) is f:
-                setattr(utils, name, g)
+            for m in namespaces:
+                if getattr(m, name, None) is f:
+                    setattr(m, name, g)
     _guarded = True
     w.PendularLoop.readersGuarded()

@@ -75,7 +75,31 @@ def snapshot():
 SNAPSHOTS = []
 
 
-def run(loop, box, friction, threads, snapshots=False, records=True, sort=0.0):
+def recreate_far_pair():
+    """A PyRunner's bare createInteraction (the name yade's launcher imported into __main__) on the
+    potential pair of PendularMat spheres with the largest gap: YADE erases the potential interaction,
+    which moves the container's last entry into its place, and appends the new one, so the container
+    keeps its size while two entries change. PendularLoop's list of entries to visit (skipFar) must
+    be dropped (the guard's wrapper) or the moved entry could sit in a place the list skips."""
+    far = None
+    for i in O.interactions.all(False):
+        b1, b2 = O.bodies[i.id1], O.bodies[i.id2]
+        if i.isReal or b1.shape.__class__.__name__ != "Sphere" or b2.shape.__class__.__name__ != "Sphere":
+            continue
+        if b1.material.__class__.__name__ != "PendularMat" or b2.material.__class__.__name__ != "PendularMat":
+            continue
+        gap = (b1.state.pos - b2.state.pos).norm() - b1.shape.radius - b2.shape.radius
+        if far is None or gap > far[0]:
+            far = (gap, i.id1, i.id2)
+    if far is not None:
+        createInteraction(far[1], far[2])  # noqa: F821 (yade's launcher imports it into __main__)
+        RECREATED.append(far[1:])
+
+
+RECREATED = []
+
+
+def run(loop, box, friction, threads, snapshots=False, records=True, sort=0.0, skip_far=True, recreate=False):
     stress.box_packing(400, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.7, speed=0.1, friction=friction)
     if box == "walls":
         dry_neighbours()
@@ -89,6 +113,11 @@ def run(loop, box, friction, threads, snapshots=False, records=True, sort=0.0):
     if loop == "fused":
         engine.keepRecords = records
         engine.sortDisorder = sort
+        engine.skipFar = skip_far
+    if recreate:
+        from yade.wrapper import PyRunner
+        del RECREATED[:]
+        O.engines = O.engines + [PyRunner(command="recreate_far_pair()", iterPeriod=97)]
     if snapshots:
         from yade.wrapper import PyRunner
         del SNAPSHOTS[:]
@@ -148,6 +177,13 @@ for box in ("walls", "facets"):
                     "%s: geometry and physics read from Python inside the run (normal, penetrationDepth, contactPoint, shearInc in contact, "
                     "normalForce, shearForce, Fcap, active; %d interactions at step %d) bit-identical to InteractionLoop's"
                     % (tag, len(snaps[-1][1]), snaps[-1][0]))
+            # Interactions erased and made from a PyRunner with the bare createInteraction of __main__.
+            made, made_totals, _, made_loop, _ = run("fused", box, friction, 1, recreate=True)
+            made_pairs = list(RECREATED)
+            full, full_totals, _, _, _ = run("fused", box, friction, 1, recreate=True, skip_far=False)
+            ck.true(len(made_pairs) >= 10 and made_pairs == RECREATED and made_loop.nFastPasses > 0 and made == full and made_totals == full_totals,
+                    "%s: %d far pairs made real from a PyRunner (createInteraction of __main__), %d steps on the list: positions, velocities "
+                    "and totals bit-identical to the run without the list (skipFar=False)" % (tag, len(made_pairs), made_loop.nFastPasses))
             plain, plain_totals, _, _, plain_snaps = run("fused", box, friction, 1, snapshots=True, records=False)
             ck.true(snaps == plain_snaps and one == plain and one_totals == plain_totals,
                     "%s: with and without PendularLoop's records, the snapshots read inside the run, positions, velocities and totals are "
