@@ -267,14 +267,17 @@ void PendularLoop::action()
 	const bool fast = skipFar && recording && skipApart && !fullCheck && workValid && workEpoch == epochCount && workColliderRuns == colliderRuns
 	        && workContainer == scene->interactions.get() && long(workSize) == size
 	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
-	long disorder = 0;
-	if (fast) {
-		const long m = long(work.size());
+	long       disorder = 0;
+	const long m        = fast ? long(work.size()) : size;
+	// Static schedule: each thread gets the same interactions in every run, so a run with a given
+	// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
+	// spread evenly over the container (one half per thread left one thread idle a third of the time).
 #ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded)
+#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder)
 #endif
-		{
-			Counts c;
+	{
+		Counts c;
+		if (fast) {
 #ifdef YADE_OPENMP
 #pragma omp for schedule(static, 1024)
 #endif
@@ -288,29 +291,7 @@ void PendularLoop::action()
 				visit(work[k], k + prefetchAhead < m ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < m ? work[k + 2 * prefetchAhead] : -1, r,
 				      skipApart, recording, c);
 			}
-			fused += c.fused;
-			dispatchedCount += c.dispatched;
-			apart += c.apart;
-			recorded += c.recorded;
-			bounded += c.bounded;
-		}
-		const long skipped = size - m;
-		fused += skipped;
-		apart += skipped;
-		bounded += skipped;
-		nSkipped = skipped;
-		++nFastPasses;
-		disorder = nDisorder; // the container's order has not changed
-	} else {
-		nSkipped = 0;
-		// Static schedule: each thread gets the same interactions in every run, so a run with a given
-		// number of threads is reproducible. Interleaved chunks: real and potential interactions are not
-		// spread evenly over the container (one half per thread left one thread idle a third of the time).
-#ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder)
-#endif
-		{
-			Counts c;
+		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
 			long     before    = -2;
 			uint64_t beforeKey = 0;
@@ -325,12 +306,21 @@ void PendularLoop::action()
 				before    = i;
 				beforeKey = key;
 			}
-			fused += c.fused;
-			dispatchedCount += c.dispatched;
-			apart += c.apart;
-			recorded += c.recorded;
-			bounded += c.bounded;
 		}
+		fused += c.fused;
+		dispatchedCount += c.dispatched;
+		apart += c.apart;
+		recorded += c.recorded;
+		bounded += c.bounded;
+	}
+	// The skipped entries, counted as the full pass counts them (apart by the bound).
+	nSkipped = size - m;
+	fused += nSkipped;
+	apart += nSkipped;
+	bounded += nSkipped;
+	if (fast) {
+		++nFastPasses;
+		disorder = nDisorder; // the container's order has not changed
 	}
 	nDisorder     = disorder;
 	sortPending   = sortDisorder > 0 && Real(disorder) > sortDisorder * Real(size);
