@@ -30,6 +30,7 @@ elif what == "shear_cell":
     O.dt = cfg["dt_over_tc"] * cfg["tc"]
 else:
     raise ValueError("SCENE = %r is not one of packing, shear_cell" % (what,))
+O.engines = scene.newton_only(O.engines)  # serial and MPI runs alike: yade.mpy places its engines next to NewtonIntegrator
 if error:
     m = O.materials[0]
     other = O.materials.append(PendularMat(tc=m.tc, en=m.en, et=m.et, density=m.density, frictionAngle=m.frictionAngle, Vb=m.Vb,

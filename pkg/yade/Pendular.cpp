@@ -255,27 +255,30 @@ void PendularCheck::action()
 		                  << " s of the interactions so far: contacts may gain energy or diverge; yade_capillary.scene.stable_dt() gives a "
 		                     "stable time step");
 	}
-	if (!message.empty()) {
-		// Under mpiexec (yade.mpy), the other ranks wait for this one inside the step: an exception
-		// here would leave them, and the master's O.run, blocked for ever. End the whole run instead,
-		// with the message.
-		int initialized = 0, finalized = 0, ranks = 1, rank = 0;
-		MPI_Initialized(&initialized);
-		MPI_Finalized(&finalized);
-		if (initialized && !finalized) {
-			MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-			MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-		}
-		if (ranks > 1) {
-			LOG_ERROR("MPI rank " << rank << " of " << ranks << ": " << message << "; aborting all ranks (MPI_Abort)");
-			std::cerr << "yade-capillary, MPI rank " << rank << ": ValueError: " << message << std::endl;
-			MPI_Abort(MPI_COMM_WORLD, 1);
-		}
-		// O.step() runs the step in the Python thread, which holds the GIL and gets the exception
-		// itself; YADE's simulation thread does not hold it, and its wait() may miss the error.
-		remember(message, PyGILState_Check() ? nullptr : scene);
-		throw std::invalid_argument(message);
+	if (!message.empty()) raiseInStep(scene, message);
+}
+
+void PendularCheck::raiseInStep(Scene* scene, const std::string& message)
+{
+	// Under mpiexec (yade.mpy), the other ranks wait for this one inside the step: an exception
+	// here would leave them, and the master's O.run, blocked for ever. End the whole run instead,
+	// with the message.
+	int initialized = 0, finalized = 0, ranks = 1, rank = 0;
+	MPI_Initialized(&initialized);
+	MPI_Finalized(&finalized);
+	if (initialized && !finalized) {
+		MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+		MPI_Comm_rank(MPI_COMM_WORLD, &rank);
 	}
+	if (ranks > 1) {
+		LOG_ERROR("MPI rank " << rank << " of " << ranks << ": " << message << "; aborting all ranks (MPI_Abort)");
+		std::cerr << "yade-capillary, MPI rank " << rank << ": ValueError: " << message << std::endl;
+		MPI_Abort(MPI_COMM_WORLD, 1);
+	}
+	// O.step() runs the step in the Python thread, which holds the GIL and gets the exception
+	// itself; YADE's simulation thread does not hold it, and its wait() may miss the error.
+	remember(message, PyGILState_Check() ? nullptr : scene);
+	throw std::invalid_argument(message);
 }
 
 void PendularCheck::guardOmega(boost::python::object wrapper)

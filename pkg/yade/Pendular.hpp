@@ -242,6 +242,9 @@ class PendularCheck : public GlobalEngine {
 
 public:
 	void action() override;
+	// Raises `message` from a step of `scene` as PendularCheck's errors are raised: a ValueError in
+	// Python, also when YADE's wait() misses it, and under mpiexec the end of every rank.
+	static void raiseInStep(Scene* scene, const std::string& message);
 	DECLARE_LOGGER;
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(PendularCheck, GlobalEngine,

@@ -1,4 +1,5 @@
 #include "PendularLoop.hpp"
+#include "Prefetch.hpp"
 
 #include <pkg/common/Facet.hpp>
 #include <pkg/common/InsertionSortCollider.hpp>
@@ -28,19 +29,11 @@ CREATE_LOGGER(PendularLoop);
 bool PendularLoop::readersGuarded = false;
 
 namespace {
-	// The pass is bound by memory latency: an interaction is three heap objects (Interaction, ScGeom,
-	// PendularPhys, ~700 B over 11 cache lines) reached through pointers. Prefetching them a few
-	// interactions ahead overlaps the misses with the arithmetic of the current one.
-	template <class T> void prefetchObject(const T* p)
-	{
-		const char* c = reinterpret_cast<const char*>(p);
-		for (size_t offset = 0; offset < sizeof(T); offset += 64)
-			__builtin_prefetch(c + offset);
-	}
-	constexpr long prefetchAhead = 8; // interactions; the Interaction itself twice as far
-	// Below this many bodies, the per-body phases (gather, zeroing, force hand-over) run on one
-	// thread: starting a parallel region costs more than they do.
-	constexpr long parallelBodies = 20000;
+	// An interaction is three heap objects (Interaction, ScGeom, PendularPhys, ~700 B over 11 cache
+	// lines): prefetched this many interactions ahead, the Interaction itself twice as far.
+	using pendular::prefetchObject;
+	using pendular::parallelBodies; // for the per-body phases: gather, zeroing, force hand-over
+	constexpr long prefetchAhead = 8;
 	// An epoch of the bound on the gaps of potential pairs (gather) ends when a body has moved this
 	// fraction of the smallest sphere radius from where it was at its start.
 	constexpr Real epochMove = 0.1;
@@ -502,7 +495,7 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
 	if (ranks > 1) return false;
 	static const std::set<std::string> known { "ForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck", "NewtonIntegrator",
-		                                   "PyRunner", "RotationEngine" };
+		                                   "PendularIntegrator", "PyRunner", "RotationEngine" };
 	for (const auto& e : scene->engines)
 		if (e && !known.count(e->getClassName())) return false;
 	return true;

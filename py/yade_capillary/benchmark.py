@@ -188,7 +188,9 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
         mat = O.materials.append(material)
         for pos, radius, free in bodies:
             O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
-        O.engines = shearcell.run_engines(info, loop)
+        # YADE's own setup (NewtonIntegrator) for the built-in law and our Law2 in InteractionLoop;
+        # PendularLoop with PendularIntegrator, as scene.engines gives them by default.
+        O.engines = shearcell.run_engines(info, loop, integrator="pendular" if loop == "fused" else "newton")
         for e in O.engines:
             e.ompThreads = nthreads
         O.run(100, True)  # interactions and bridges in place before timing

@@ -3,7 +3,7 @@ from yade import O
 from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
                           Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
                           Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
-                          PendularCheck, PendularLoop, PendularMat)
+                          PendularCheck, PendularIntegrator, PendularLoop, PendularMat)
 
 from . import objects
 
@@ -28,7 +28,7 @@ def interaction_loop(loop="fused", detection_factor=1.0, law_label="capillaryLaw
     return PendularLoop(*functors, label="interactionLoop") if loop == "fused" else InteractionLoop(*functors, label="interactionLoop")
 
 
-def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused"):
+def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused", integrator="pendular"):
     """Return the usual engine list with the capillary law.
 
     gravity [m/s^2], damping: NewtonIntegrator's numerical damping [-] (0 for physical runs),
@@ -41,9 +41,16 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     loop: "fused" (default, PendularLoop), "standard" (YADE's InteractionLoop with our functors),
     or an InteractionLoop instance to use instead (e.g. YADE's built-in capillary law, for
     comparisons). The collider is labelled ``collider`` (yade.mpy looks it up by that label).
+    integrator: "pendular" (default): NewtonIntegrator(dead=True) holds gravity and damping and
+    PendularIntegrator, after it, does its step (the same numbers, faster; NewtonIntegrator's own
+    step for scenes it does not cover, see its docstring); "newton": YADE's NewtonIntegrator alone
+    (needed for yade.mpy, which places its engines next to NewtonIntegrator).
     """
+    if integrator not in ("pendular", "newton"):
+        raise ValueError("integrator: %r is not one of 'pendular', 'newton'" % (integrator,))
     if isinstance(loop, str):
         loop = interaction_loop(loop, detection_factor, law_label)
+    newton = NewtonIntegrator(gravity=gravity, damping=damping, dead=integrator == "pendular")
     return [
         ForceResetter(),
         InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor), Bo1_Facet_Aabb(), Bo1_Wall_Aabb()],
@@ -51,8 +58,18 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
         loop,
         PendularCheck(),
         *extra,
-        NewtonIntegrator(gravity=gravity, damping=damping),
-    ]
+        newton,
+    ] + ([PendularIntegrator()] if integrator == "pendular" else [])
+
+
+def newton_only(engine_list):
+    """engine_list with PendularIntegrator's step given back to its NewtonIntegrator (alive again), as
+    engines(integrator="newton") makes it: for yade.mpy, which places its engines next to NewtonIntegrator."""
+    out = [e for e in engine_list if not isinstance(e, PendularIntegrator)]
+    for e in out:
+        if isinstance(e, NewtonIntegrator):
+            e.dead = False
+    return out
 
 
 def stable_dt(safety=0.1):

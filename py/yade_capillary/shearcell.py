@@ -197,17 +197,17 @@ def prepare(config, case, path, seed=None, log=print, checkpoint=None, save_ever
     return info
 
 
-def run_engines(info, loop="fused"):
+def run_engines(info, loop="fused", integrator="pendular"):
     """Engines of the running cell: gravity, no numerical damping, the rotating walls turned about z
-    with the configured period; `loop` as in scene.engines ("fused", "standard" or an InteractionLoop, e.g. another law)."""
+    with the configured period; `loop` and `integrator` as in scene.engines (loop: "fused", "standard" or an
+    InteractionLoop, e.g. another law; integrator: "pendular" or "newton", the latter for yade.mpy)."""
     from yade.wrapper import RotationEngine
 
     from .scene import engines
 
-    eng = engines(gravity=(0, 0, -info["cfg"].get("g", GRAVITY)), damping=0.0, loop=loop)
-    eng.insert(-1, RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / info["cfg"]["period"],
-                                  rotateAroundZero=True, zeroPoint=(0, 0, 0)))
-    return eng
+    rotation = RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / info["cfg"]["period"],
+                              rotateAroundZero=True, zeroPoint=(0, 0, 0))
+    return engines(gravity=(0, 0, -info["cfg"].get("g", GRAVITY)), damping=0.0, loop=loop, extra=[rotation], integrator=integrator)
 
 
 def _set_config(info, config):

@@ -1,0 +1,215 @@
+#include "PendularIntegrator.hpp"
+#include "Pendular.hpp"
+#include "Prefetch.hpp"
+
+#include <core/Bound.hpp>
+#include <lib/pyutil/gil.hpp>
+
+#include <chrono>
+
+#ifdef YADE_OPENMP
+#include <omp.h>
+#endif
+
+namespace yade {
+
+YADE_PLUGIN((PendularIntegrator));
+CREATE_LOGGER(PendularIntegrator);
+
+namespace {
+	namespace py = boost::python;
+
+	using pendular::parallelBodies;
+	using pendular::prefetchObject;
+	// Bodies ahead: the Body twice as far as its State and Bound, which are read from it.
+	constexpr long prefetchAhead = 8;
+
+	// NewtonIntegrator::cundallDamp2nd (Cundall's non-viscous damping of an acceleration).
+	void cundallDamp2nd(Real damping, Real dt, const Vector3r& vel, Vector3r& accel)
+	{
+		for (int i = 0; i < 3; i++)
+			accel[i] *= 1 - damping * math::sign(accel[i] * (vel[i] + 0.5 * dt * accel[i]));
+	}
+} // namespace
+
+shared_ptr<Engine> PendularIntegrator::findNewton() const
+{
+	// The last NewtonIntegrator before this engine. Matched by class name: only the members of the
+	// base Engine (dead, scene, action) are used in C++.
+	shared_ptr<Engine> newton;
+	for (const auto& engine : scene->engines) {
+		if (engine.get() == this) break;
+		if (engine && engine->getClassName() == "NewtonIntegrator") newton = engine;
+	}
+	if (!newton)
+		PendularCheck::raiseInStep(scene, "PendularIntegrator: no NewtonIntegrator before it in O.engines (it does that engine's step and "
+		                                  "reads its parameters); yade_capillary.scene.engines places them");
+	if (!newton->dead)
+		PendularCheck::raiseInStep(scene, "PendularIntegrator: the NewtonIntegrator before it in O.engines has dead=False, so every body "
+		                                  "would be moved twice per step; set its dead=True (yade_capillary.scene.engines does), or remove "
+		                                  "the PendularIntegrator");
+	return newton;
+}
+
+PendularIntegrator::Parameters PendularIntegrator::parameters(const shared_ptr<Engine>& newton) const
+{
+	Parameters p;
+	gilLock    lock;
+	try {
+		const py::object py(newton);
+		p.damping            = py::extract<Real>(py.attr("damping"));
+		p.gravity            = py::extract<Vector3r>(py.attr("gravity"));
+		p.dampGravity        = py::extract<bool>(py.attr("dampGravity"));
+		p.exactAsphericalRot = py::extract<bool>(py.attr("exactAsphericalRot"));
+		py::extract<long> mask(py.attr("mask"));
+		p.mask = mask.check() ? int(mask()) : 1; // a mask that is not an int (YADE_MASK_ARBITRARY) is handed over
+	} catch (const py::error_already_set&) {
+		PyErr_Clear();
+		PendularCheck::raiseInStep(scene, "PendularIntegrator: cannot read the parameters of the NewtonIntegrator before it");
+	}
+	return p;
+}
+
+std::string PendularIntegrator::unsupported(const Parameters& p, bool& fatal) const
+{
+	fatal = false;
+	if (scene->isPeriodic) return "periodic cell";
+	if (scene->trackEnergy) return "energy tracking (O.trackEnergy)";
+	for (const auto& engine : scene->engines)
+		if (engine && engine->getClassName() == "GlobalStiffnessTimeStepper") return "density scaling (GlobalStiffnessTimeStepper)";
+	if (p.mask > 0) return "NewtonIntegrator.mask";
+	const auto& bodies  = *scene->bodies;
+	const long  n       = long(bodies.size());
+	int         clumps = 0, aspherical = 0, subdomains = 0;
+	for (long id = 0; id < n; ++id) {
+		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) __builtin_prefetch(bodies[id + prefetchAhead].get());
+		const auto& b = bodies[id];
+		if (!b) continue;
+		clumps |= !b->isStandalone();
+		aspherical |= p.exactAsphericalRot && b->isAspherical();
+		subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
+	}
+	if (subdomains) {
+		fatal = true;
+		return "PendularIntegrator: bodies of other subdomains (yade.mpy): its communication engines are placed next to the "
+		       "NewtonIntegrator; build the engines with yade_capillary.scene.engines(integrator='newton')";
+	}
+	if (clumps) return "clumps";
+	if (aspherical) return "aspherical bodies with NewtonIntegrator.exactAsphericalRot";
+	return "";
+}
+
+void PendularIntegrator::action()
+{
+	const auto       newton = findNewton();
+	const Parameters p      = parameters(newton);
+	bool             fatal  = false;
+	const std::string why   = unsupported(p, fatal);
+	if (fatal) PendularCheck::raiseInStep(scene, why);
+	if (!why.empty()) {
+		if (why != handedOverBecause) LOG_INFO("PendularIntegrator: the NewtonIntegrator does the step (" << why << ")");
+		handedOverBecause = why;
+		++nHandedOver;
+		nIntegrated    = 0;
+		newton->scene  = scene;
+		newton->action();
+		return;
+	}
+#ifdef YADE_OPENMP
+	const int threads = ompThreads > 0 ? math::min(ompThreads, omp_get_max_threads()) : omp_get_max_threads();
+#else
+	const int threads = 1;
+#endif
+	const auto start  = std::chrono::steady_clock::now();
+	const Real flag   = integrate(p, threads);
+	bodiesTime += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+	gilLock lock;
+	try {
+		py::object(newton).attr("maxVelocitySq") = flag;
+	} catch (const py::error_already_set&) {
+		PyErr_Clear();
+		PendularCheck::raiseInStep(scene, "PendularIntegrator: cannot set NewtonIntegrator.maxVelocitySq (the collider's flag)");
+	}
+}
+
+// NewtonIntegrator::action for a standalone body with spherical rotation in an aperiodic scene without
+// energy tracking, density scaling or mask, in its order of operations (the same numbers bit for bit:
+// tests/yade/test_integrator.py). Returns what NewtonIntegrator leaves in maxVelocitySq: the largest
+// over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
+Real PendularIntegrator::integrate(const Parameters& p, int threads)
+{
+	const auto&     bodies = *scene->bodies;
+	const long      n      = long(bodies.size());
+	const Real      dt     = scene->dt;
+	ForceContainer& forces = scene->forces;
+	forces.sync();
+	Real flag  = 0;
+	long count = 0;
+#ifdef YADE_OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > parallelBodies) reduction(max : flag) reduction(+ : count)
+#endif
+	for (long id = 0; id < n; ++id) {
+		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
+		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
+			const Body& ahead = *bodies[id + prefetchAhead];
+			prefetchObject<1>(ahead.state.get());
+			if (ahead.bound) __builtin_prefetch(ahead.bound.get());
+		}
+		const auto& b = bodies[id];
+		if (!b) continue;
+		State&         s       = *b->state;
+		const Vector3r f       = forces.getForce(Body::id_t(id));
+		const Vector3r m       = forces.getTorque(Body::id_t(id));
+		const unsigned blocked = s.blockedDOFs;
+		if (blocked != State::DOF_ALL) {
+			// NewtonIntegrator::computeAccel and computeAccelWithoutGravity + addGravity (dampGravity).
+			Vector3r linAccel;
+			if (blocked == 0) linAccel = p.dampGravity ? Vector3r(f / s.mass + p.gravity) : Vector3r(f / s.mass);
+			else {
+				linAccel = Vector3r::Zero();
+				for (int i = 0; i < 3; i++)
+					if (!(blocked & State::axisDOF(i, false))) linAccel[i] += p.dampGravity ? f[i] / s.mass + p.gravity[i] : f[i] / s.mass;
+			}
+			if (s.isDamped && p.damping != 0) cundallDamp2nd(p.damping, dt, s.vel, linAccel);
+			if (!p.dampGravity) {
+				Vector3r g = p.gravity;
+				if (blocked != 0) {
+					g = Vector3r::Zero();
+					for (int i = 0; i < 3; i++)
+						if (!(blocked & State::axisDOF(i, false))) g[i] = p.gravity[i];
+				}
+				linAccel += g;
+			}
+			s.vel += dt * linAccel;
+			// NewtonIntegrator::computeAngAccel
+			Vector3r angAccel;
+			if (blocked == 0) angAccel = m.cwiseQuotient(s.inertia);
+			else {
+				angAccel = Vector3r::Zero();
+				for (int i = 0; i < 3; i++)
+					if (!(blocked & State::axisDOF(i, true))) angAccel[i] += m[i] / s.inertia[i];
+			}
+			if (s.isDamped && p.damping != 0) cundallDamp2nd(p.damping, dt, s.angVel, angAccel);
+			s.angVel += dt * angAccel;
+		}
+		// NewtonIntegrator::leapfrogTranslate and leapfrogSphericalRotate
+		s.pos += s.vel * dt;
+		const Real angle2 = s.angVel.squaredNorm();
+		if (angle2 != 0) {
+			const Real        angle = math::sqrt(angle2);
+			const Quaternionr q(AngleAxisr(angle * dt, s.angVel / angle));
+			s.ori = q * s.ori;
+		}
+		s.ori.normalize();
+		++count;
+		// NewtonIntegrator::saveMaximaDisplacement
+		if (!b->bound) continue;
+		const Vector3r disp    = s.pos - b->bound->refPos;
+		const Real     maxDisp = math::max(math::abs(disp[0]), math::max(math::abs(disp[1]), math::abs(disp[2])));
+		flag                   = math::max(flag, (!maxDisp || maxDisp < b->bound->sweepLength) ? Real(0.5) : Real(2));
+	}
+	nIntegrated = count;
+	return flag;
+}
+
+} // namespace yade

@@ -1,0 +1,57 @@
+// PendularIntegrator: YADE's NewtonIntegrator step for scenes of standalone spherical bodies, with the
+// bodies' objects prefetched ahead and no per-body function calls; any other scene is handed to the
+// NewtonIntegrator itself.
+#pragma once
+
+#include "YadeHeaders.hpp"
+
+#include <core/GlobalEngine.hpp>
+
+namespace yade {
+
+class PendularIntegrator : public GlobalEngine {
+public:
+	void action() override;
+	DECLARE_LOGGER;
+
+private:
+	// NewtonIntegrator's parameters, read through its Python attributes (the plugin is compiled
+	// against other YADE headers than the installed YADE's: only the base Engine's members are read
+	// in C++).
+	struct Parameters {
+		Real     damping = 0;
+		Vector3r gravity = Vector3r::Zero();
+		bool     dampGravity = true, exactAsphericalRot = true, densityScaling = false;
+		int      mask = -1;
+	};
+	shared_ptr<Engine> findNewton() const;
+	Parameters         parameters(const shared_ptr<Engine>& newton) const;
+	// Why this step cannot be done here ("" if it can); fatal: a scene the engine order makes wrong.
+	std::string unsupported(const Parameters& p, bool& fatal) const;
+	Real        integrate(const Parameters& p, int threads); // returns NewtonIntegrator's maxVelocitySq
+
+public:
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(PendularIntegrator, GlobalEngine,
+		"The step of the :yref:`NewtonIntegrator` that precedes it in O.engines (which must be dead: dead=True), for scenes of "
+		"standalone bodies (no clumps) with spherical inertia: the same leapfrog, Cundall damping, gravity, blocked degrees of "
+		"freedom and the same flag for the collider (NewtonIntegrator.maxVelocitySq, written back into it), in the same order "
+		"of operations, so that the positions and velocities are those of NewtonIntegrator bit for bit, without its "
+		"per-body function calls and with each body's Body, State and Bound prefetched ahead (at the scale of Gladkyy 2014's "
+		"cell these objects do not fit in the caches, and NewtonIntegrator waits on them in turn). Its parameters are read "
+		"from the NewtonIntegrator at every step, so that the NewtonIntegrator stays the one place to set gravity and damping. "
+		"Any other scene (clumps, aspherical bodies with exactAsphericalRot, a periodic cell, energy tracking, density scaling, "
+		"a mask) is handed to the NewtonIntegrator's own step (see nHandedOver). yade.mpy is not supported: it inserts its "
+		"communication engines next to NewtonIntegrator (build the engines with yade_capillary.scene.engines(integrator='newton')).",
+		((long, nIntegrated, 0, Attr::readonly, "Bodies integrated by this engine's own pass in the last step [-] (0 when the step was handed to the NewtonIntegrator)."))
+		((long, nHandedOver, 0, Attr::readonly, "Steps handed to the NewtonIntegrator's own step since the engine was made [-] (see handedOverBecause)."))
+		((std::string, handedOverBecause, "", Attr::readonly, "Why the last step handed to the NewtonIntegrator was [-]."))
+		((Real, bodiesTime, 0, , "Wall time spent in the pass over the bodies since this was last set to 0 [ns].")),
+		/*ctor*/,
+		/*py*/
+	);
+	// clang-format on
+};
+REGISTER_SERIALIZABLE(PendularIntegrator);
+
+} // namespace yade

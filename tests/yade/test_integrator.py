@@ -1,0 +1,94 @@
+# PendularIntegrator against YADE's NewtonIntegrator, whose step it does (expected values: the same
+# scene run with NewtonIntegrator alone, scene.engines(integrator='newton')).
+# - Wet packings of 300 spheres in boxes of walls and of facets under gravity, 1000 steps, with what
+#   NewtonIntegrator's step depends on: Cundall damping (0 and 0.2, gravity damped and not,
+#   dampGravity), a sphere with isDamped=False, spheres with some degrees of freedom blocked, a
+#   fixed sphere moved by its velocity alone, and the collider's flag (NewtonIntegrator.maxVelocitySq,
+#   which PendularIntegrator writes back: a wrong flag changes when the collider runs, counted by its
+#   numAction).
+# - yade -j1: the same operations in the same order on the same numbers: positions, velocities,
+#   angular velocities and orientations bit-identical, and the collider run as often.
+# - yade -j2 (ctest runs this file with -j1 and with -j2): both runs on two threads. The
+#   integration of a body does not depend on the others, but the interaction loop's force sums and
+#   the collider's parallel insertion do, so the two runs may differ by round-off: bound 1e-9 of the
+#   scale as in test_loop.py (measured there: at most 2.4e-12 after 2000 steps).
+# - A scene with a clump is handed to NewtonIntegrator's own step (nHandedOver counts the steps),
+#   with the same results as NewtonIntegrator alone.
+# - Engine lists that would move the bodies twice or not at all raise a ValueError naming the cause.
+from yade import O
+from yade.wrapper import NewtonIntegrator
+
+from yade_capillary import scene, stress
+from yade_capillary.testing import Checker
+
+ck = Checker("test_integrator")
+STEPS = 1000
+BOUND = 1e-9
+RMIN = 0.5e-3
+parallel = O.numThreads > 1
+
+
+def build(box, damping, damp_gravity, integrator, clump=False):
+    stress.box_packing(300, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.85, speed=1.0, friction=0.3)
+    spheres = [b for b in O.bodies if b.shape.__class__.__name__ == "Sphere"]
+    spheres[0].state.isDamped = False
+    spheres[1].state.blockedDOFs = "xZ"
+    spheres[2].state.blockedDOFs = "yzXY"
+    spheres[3].state.blockedDOFs = "xyzXYZ"  # fixed: moved by its velocity only
+    spheres[3].state.vel, spheres[3].state.angVel = (0.01, -0.02, 0.005), (3.0, 1.0, -2.0)
+    if clump:
+        O.bodies.clump([spheres[4].id, spheres[5].id])
+    O.engines = scene.engines(gravity=(0, 0, -9.81), damping=damping, integrator=integrator)
+    for e in O.engines:
+        if isinstance(e, NewtonIntegrator):
+            e.dampGravity = damp_gravity
+    O.dt = scene.stable_dt(0.1)
+    O.run(STEPS, True)
+    state = [(tuple(b.state.pos), tuple(b.state.vel), tuple(b.state.angVel), tuple(b.state.ori)) for b in O.bodies if b is not None]
+    engines = {type(e).__name__: e for e in O.engines}
+    return state, engines["InsertionSortCollider"].numAction, engines.get("PendularIntegrator")
+
+
+def worst(a, b):
+    """Largest difference [in RMIN for positions, in the largest speed for velocities, in that speed
+    over RMIN for angular velocities, absolute for the orientations' unit quaternions]."""
+    vmax = max(max(abs(x) for x in s[1]) for s in a) or 1.0
+    scales = (RMIN, vmax, vmax / RMIN, 1.0)
+    return max(max(abs(x - y) for x, y in zip(sa[k], sb[k])) / scales[k] for sa, sb in zip(a, b) for k in range(4))
+
+
+for box in ("walls", "facets"):
+    for damping, damp_gravity in ((0.0, True), (0.2, True), (0.2, False)):
+        tag = "%s, damping %g, dampGravity %s, %d thread(s)" % (box, damping, damp_gravity, O.numThreads)
+        ref, ref_runs, _ = build(box, damping, damp_gravity, "newton")
+        got, runs, integrator = build(box, damping, damp_gravity, "pendular")
+        ck.true(integrator.nIntegrated == len(ref) and integrator.nHandedOver == 0,
+                "%s: PendularIntegrator integrated all %d bodies itself (%d) and handed no step over (%d: %s)"
+                % (tag, len(ref), integrator.nIntegrated, integrator.nHandedOver, integrator.handedOverBecause))
+        ck.true(10 < runs == ref_runs < STEPS, "%s: the collider ran %d times, %d with NewtonIntegrator alone (its flag maxVelocitySq)"
+                % (tag, runs, ref_runs))
+        if parallel:
+            d = worst(ref, got)
+            ck.true(d <= BOUND, "%s: positions, velocities, angular velocities, orientations within %g of the scale of "
+                    "NewtonIntegrator's (largest difference %.3g)" % (tag, BOUND, d))
+        else:
+            ck.true(got == ref, "%s: positions, velocities, angular velocities and orientations of all %d bodies bit-identical to "
+                    "NewtonIntegrator's (largest difference %.3g of the scale)" % (tag, len(ref), worst(ref, got)))
+
+ref, ref_runs, _ = build("walls", 0.0, True, "newton", clump=True)
+got, runs, integrator = build("walls", 0.0, True, "pendular", clump=True)
+ck.true(integrator.nHandedOver == STEPS and integrator.nIntegrated == 0 and integrator.handedOverBecause == "clumps",
+        "scene with a clump: every step handed to NewtonIntegrator (%d of %d, because %r)" % (integrator.nHandedOver, STEPS,
+                                                                                          integrator.handedOverBecause))
+ck.true(runs == ref_runs and (got == ref or worst(ref, got) <= BOUND), "scene with a clump: the same results as NewtonIntegrator alone")
+
+# Engine lists that would move every body twice, or never.
+stress.box_packing(20, "willett_full", rmin=RMIN, ratio=2.0, box="walls", porosity=0.9)
+O.engines = scene.engines(gravity=(0, 0, -9.81))
+newton = next(e for e in O.engines if isinstance(e, NewtonIntegrator))
+newton.dead = False
+ck.raises(ValueError, O.step, ["PendularIntegrator", "dead=False", "twice"], "NewtonIntegrator alive before PendularIntegrator")
+O.engines = [e for e in O.engines if not isinstance(e, NewtonIntegrator)]
+ck.raises(ValueError, O.step, ["PendularIntegrator", "no NewtonIntegrator"], "no NewtonIntegrator before PendularIntegrator")
+ck.raises(ValueError, lambda: scene.engines(integrator="verlet"), ["integrator", "verlet", "pendular", "newton"], "unknown integrator")
+ck.finish()
