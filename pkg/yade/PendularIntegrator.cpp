@@ -32,14 +32,27 @@ namespace {
 	}
 } // namespace
 
-shared_ptr<Engine> PendularIntegrator::findNewton() const
+void PendularIntegrator::findNewton()
 {
-	// The last NewtonIntegrator before this engine. Matched by class name: only the members of the
-	// base Engine (dead, scene, action) are used in C++.
-	shared_ptr<Engine> newton;
-	for (const auto& engine : scene->engines) {
-		if (engine.get() == this) break;
-		if (engine && engine->getClassName() == "NewtonIntegrator") newton = engine;
+	// The engine list is scanned again only when it changed (its engines compared by owner, so that
+	// a new engine made where a freed one was is another engine).
+	bool same = scannedEngines.size() == scene->engines.size();
+	for (size_t i = 0; same && i < scannedEngines.size(); ++i)
+		same = !scannedEngines[i].owner_before(scene->engines[i]) && !scene->engines[i].owner_before(scannedEngines[i]);
+	if (!same) {
+		scannedEngines.clear();
+		newton.reset();
+		stiffnessTimeStepper = false;
+		bool before          = true; // the NewtonIntegrator is the last one before this engine
+		for (const auto& engine : scene->engines) {
+			scannedEngines.push_back(engine);
+			if (engine.get() == this) before = false;
+			if (!engine) continue;
+			// Matched by class name: only the members of the base Engine (dead, scene, action) are used in C++.
+			const std::string name = engine->getClassName();
+			if (before && name == "NewtonIntegrator") newton = engine;
+			stiffnessTimeStepper = stiffnessTimeStepper || name == "GlobalStiffnessTimeStepper";
+		}
 	}
 	if (!newton)
 		PendularCheck::raiseInStep(scene, "PendularIntegrator: no NewtonIntegrator before it in O.engines (it does that engine's step and "
@@ -48,10 +61,9 @@ shared_ptr<Engine> PendularIntegrator::findNewton() const
 		PendularCheck::raiseInStep(scene, "PendularIntegrator: the NewtonIntegrator before it in O.engines has dead=False, so every body "
 		                                  "would be moved twice per step; set its dead=True (yade_capillary.scene.engines does), or remove "
 		                                  "the PendularIntegrator");
-	return newton;
 }
 
-PendularIntegrator::Parameters PendularIntegrator::parameters(const shared_ptr<Engine>& newton) const
+PendularIntegrator::Parameters PendularIntegrator::parameters() const
 {
 	Parameters p;
 	gilLock    lock;
@@ -70,20 +82,29 @@ PendularIntegrator::Parameters PendularIntegrator::parameters(const shared_ptr<E
 	return p;
 }
 
-std::string PendularIntegrator::unsupported(const Parameters& p, bool& fatal) const
+std::string PendularIntegrator::unsupported(const Parameters& p, bool& fatal)
 {
 	fatal = false;
 	if (scene->isPeriodic) return "periodic cell";
 	if (scene->trackEnergy) return "energy tracking (O.trackEnergy)";
-	for (const auto& engine : scene->engines)
-		if (engine && engine->getClassName() == "GlobalStiffnessTimeStepper") return "density scaling (GlobalStiffnessTimeStepper)";
+	if (stiffnessTimeStepper) return "density scaling (GlobalStiffnessTimeStepper)";
 	if (p.mask > 0) return "NewtonIntegrator.mask";
-	const auto& bodies  = *scene->bodies;
-	const long  n       = long(bodies.size());
-	int         clumps = 0, aspherical = 0, subdomains = 0;
+	// The bodies, read once here (BodyContainer's operator[] is a call into YADE) for the pass as well.
+	const auto& bodies = *scene->bodies;
+	const long  n      = long(bodies.size());
+	bodyPointers.resize(n);
+	int clumps = 0, aspherical = 0, subdomains = 0;
 	for (long id = 0; id < n; ++id) {
-		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) __builtin_prefetch(bodies[id + prefetchAhead].get());
-		const auto& b = bodies[id];
+		bodyPointers[id] = bodies[id].get();
+		if (id >= prefetchAhead && bodyPointers[id]) __builtin_prefetch(bodyPointers[id]);
+		const Body* b = id >= prefetchAhead ? bodyPointers[id - prefetchAhead] : nullptr;
+		if (!b) continue;
+		clumps |= !b->isStandalone();
+		aspherical |= p.exactAsphericalRot && b->isAspherical();
+		subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
+	}
+	for (long id = math::max(0L, n - prefetchAhead); id < n; ++id) {
+		const Body* b = bodyPointers[id];
 		if (!b) continue;
 		clumps |= !b->isStandalone();
 		aspherical |= p.exactAsphericalRot && b->isAspherical();
@@ -101,8 +122,8 @@ std::string PendularIntegrator::unsupported(const Parameters& p, bool& fatal) co
 
 void PendularIntegrator::action()
 {
-	const auto       newton = findNewton();
-	const Parameters p      = parameters(newton);
+	findNewton();
+	const Parameters p      = parameters();
 	bool             fatal  = false;
 	const std::string why   = unsupported(p, fatal);
 	if (fatal) PendularCheck::raiseInStep(scene, why);
@@ -138,8 +159,8 @@ void PendularIntegrator::action()
 // over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
 Real PendularIntegrator::integrate(const Parameters& p, int threads)
 {
-	const auto&     bodies = *scene->bodies;
-	const long      n      = long(bodies.size());
+	const long      n      = long(bodyPointers.size()); // filled by unsupported() in this step
+	const Body* const* bodies = bodyPointers.data();
 	const Real      dt     = scene->dt;
 	ForceContainer& forces = scene->forces;
 	forces.sync();
@@ -149,13 +170,13 @@ Real PendularIntegrator::integrate(const Parameters& p, int threads)
 #pragma omp parallel for schedule(static) num_threads(threads) if (n > parallelBodies) reduction(max : flag) reduction(+ : count)
 #endif
 	for (long id = 0; id < n; ++id) {
-		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
+		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead]);
 		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
 			const Body& ahead = *bodies[id + prefetchAhead];
 			prefetchObject<1>(ahead.state.get());
 			if (ahead.bound) __builtin_prefetch(ahead.bound.get());
 		}
-		const auto& b = bodies[id];
+		const Body* b = bodies[id];
 		if (!b) continue;
 		State&         s       = *b->state;
 		const Vector3r f       = forces.getForce(Body::id_t(id));

@@ -7,6 +7,8 @@
 
 #include <core/GlobalEngine.hpp>
 
+#include <boost/weak_ptr.hpp>
+
 namespace yade {
 
 class PendularIntegrator : public GlobalEngine {
@@ -24,11 +26,16 @@ private:
 		bool     dampGravity = true, exactAsphericalRot = true, densityScaling = false;
 		int      mask = -1;
 	};
-	shared_ptr<Engine> findNewton() const;
-	Parameters         parameters(const shared_ptr<Engine>& newton) const;
+	void               findNewton(); // into newton
+	Parameters         parameters() const; // of the NewtonIntegrator findNewton found
 	// Why this step cannot be done here ("" if it can); fatal: a scene the engine order makes wrong.
-	std::string unsupported(const Parameters& p, bool& fatal) const;
+	std::string unsupported(const Parameters& p, bool& fatal);
 	Real        integrate(const Parameters& p, int threads); // returns NewtonIntegrator's maxVelocitySq
+	// What findNewton found in the engine list it last scanned.
+	std::vector<boost::weak_ptr<Engine>> scannedEngines;
+	shared_ptr<Engine>         newton;
+	bool                       stiffnessTimeStepper = false;
+	std::vector<const Body*>   bodyPointers; // of this step, by id (nullptr: erased)
 
 public:
 	// clang-format off

@@ -82,6 +82,15 @@ ck.true(integrator.nHandedOver == STEPS and integrator.nIntegrated == 0 and inte
                                                                                           integrator.handedOverBecause))
 ck.true(runs == ref_runs and (got == ref or worst(ref, got) <= BOUND), "scene with a clump: the same results as NewtonIntegrator alone")
 
+# An engine that changes what NewtonIntegrator does, added to the list of a running scene (the
+# integrator scans the list again when it changes): GlobalStiffnessTimeStepper may scale densities.
+from yade.wrapper import GlobalStiffnessTimeStepper  # noqa: E402
+
+O.engines = O.engines[:-1] + [GlobalStiffnessTimeStepper(timestepSafetyCoefficient=0.1, defaultDt=O.dt), O.engines[-1]]
+O.step()
+ck.true(integrator.handedOverBecause.endswith("(GlobalStiffnessTimeStepper)") and integrator.nHandedOver == STEPS + 1,
+        "GlobalStiffnessTimeStepper added to a running scene: the step handed to NewtonIntegrator (%r)" % integrator.handedOverBecause)
+
 # Engine lists that would move every body twice, or never.
 stress.box_packing(20, "willett_full", rmin=RMIN, ratio=2.0, box="walls", porosity=0.9)
 O.engines = scene.engines(gravity=(0, 0, -9.81))
