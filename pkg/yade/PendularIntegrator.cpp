@@ -19,7 +19,6 @@ CREATE_LOGGER(PendularIntegrator);
 namespace {
 	namespace py = boost::python;
 
-	using pendular::parallelBodies;
 	using pendular::prefetchObject;
 	// Bodies ahead: the Body twice as far as its State and Bound, which are read from it.
 	constexpr long prefetchAhead = 8;
@@ -167,7 +166,7 @@ Real PendularIntegrator::integrate(const Parameters& p, int threads)
 	Real flag  = 0;
 	long count = 0;
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (n > parallelBodies) reduction(max : flag) reduction(+ : count)
+#pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallelBodies) reduction(max : flag) reduction(+ : count)
 #endif
 	for (long id = 0; id < n; ++id) {
 		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead]);

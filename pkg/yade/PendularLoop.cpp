@@ -32,7 +32,6 @@ namespace {
 	// An interaction is three heap objects (Interaction, ScGeom, PendularPhys, ~700 B over 11 cache
 	// lines): prefetched this many interactions ahead, the Interaction itself twice as far.
 	using pendular::prefetchObject;
-	using pendular::parallelBodies; // for the per-body phases: gather, zeroing, force hand-over
 	constexpr long prefetchAhead = 8;
 	// An epoch of the bound on the gaps of potential pairs (gather) ends when a body has moved this
 	// fraction of the smallest sphere radius from where it was at its start.
@@ -129,7 +128,7 @@ void PendularLoop::gather(int threads)
 	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
 	epoch.resize(n);
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies) reduction(max : restart, films, move2) \
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2) \
         reduction(min : rmin)
 #endif
 	for (size_t id = 0; id < n; ++id) {
@@ -229,7 +228,7 @@ void PendularLoop::action()
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies)
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies)
 #endif
 	for (int t = 0; t < threads; ++t) { // each thread zeroes its own arrays
 		threadForce[t].assign(particles.size(), Vector3r::Zero());
@@ -937,7 +936,7 @@ void PendularLoop::flushForces(int threads)
 	// the other threads' buffers hold nothing for it.
 	const long n = long(particles.size());
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) > parallelBodies)
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies)
 #endif
 	for (long id = 0; id < n; ++id) {
 		Vector3r f = threadForce[0][id], t = threadTorque[0][id];

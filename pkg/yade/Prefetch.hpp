@@ -1,4 +1,4 @@
-// What the per-body and per-interaction passes of PendularLoop and PendularIntegrator share.
+// The prefetch of the per-body and per-interaction passes of PendularLoop and PendularIntegrator.
 #pragma once
 
 #include <cstddef>
@@ -14,8 +14,5 @@ namespace pendular {
 		for (std::size_t offset = 0; offset < sizeof(T); offset += 64)
 			__builtin_prefetch(c + offset, write);
 	}
-	// Below this many bodies, a per-body pass runs on one thread: starting a parallel region costs
-	// more than the pass.
-	constexpr long parallelBodies = 20000;
 } // namespace pendular
 } // namespace yade

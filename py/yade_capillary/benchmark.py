@@ -167,7 +167,8 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     ompThreads; yade must be started with -j at least the largest): this machine's speed drifts by
     up to 3x within minutes, so thread counts are compared within one run. cache: file of the
     prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
-    fused)} of dicts."""
+    fused, ours fused with parallelBodies = 1000 in PendularLoop and PendularIntegrator)} of dicts:
+    the last tells whether their per-body phases gain from threads at the ci cell's 2 200 bodies."""
     import json
     import tempfile
 
@@ -182,7 +183,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     bodies = [(b.state.pos, b.shape.radius, b.id in set(info["flowing"])) for b in O.bodies]
     dt = O.dt
 
-    def timed(material, loop, nthreads):
+    def timed(material, loop, nthreads, parallel_bodies=None):
         O.reset()
         O.dt = dt
         mat = O.materials.append(material)
@@ -193,6 +194,8 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
         O.engines = shearcell.run_engines(info, loop, integrator="pendular" if loop == "fused" else "newton")
         for e in O.engines:
             e.ompThreads = nthreads
+            if parallel_bodies is not None and hasattr(e, "parallelBodies"):
+                e.parallelBodies = parallel_bodies
         O.run(100, True)  # interactions and bridges in place before timing
         t0 = time.time()
         O.run(steps, True)
@@ -204,12 +207,13 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
                                    gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
     loop = lambda: InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
                                    [Law2_ScGeom_ViscElCapPhys_Basic()])
-    runs = {t: [[], [], []] for t in threads}
+    runs = {t: [[], [], [], []] for t in threads}
     for _ in range(repeats):
         for t in threads:
             runs[t][0].append(timed(builtin_mat(), loop(), t))
             runs[t][1].append(timed(ours_mat(), "standard", t))
             runs[t][2].append(timed(ours_mat(), "fused", t))
+            runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=1000))
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
 
 

@@ -111,6 +111,7 @@ def run(loop, box, friction, threads, snapshots=False, records=True, sort=0.0, s
     engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
     engine.ompThreads = threads
     if loop == "fused":
+        engine.parallelBodies = 0 if threads > 1 else engine.parallelBodies  # the per-body phases on the threads too
         engine.keepRecords = records
         engine.sortDisorder = sort
         engine.skipFar = skip_far
