@@ -1,6 +1,7 @@
 # Speed of the wet (13.6 nl) shear cell: YADE's built-in Law2_ScGeom_ViscElCapPhys_Basic
 # (Willett_numeric, the baseline), our Law2 (willett_full) in YADE's InteractionLoop and in
-# PendularLoop (with PendularIntegrator, and with both engines' parallelBodies at 1000), same positions and
+# PendularLoop (with PendularIntegrator, with both engines' parallelBodies at 1000, and with YADE's
+# NewtonIntegrator instead of PendularIntegrator), same positions and
 # time step, on one and on two OpenMP threads, interleaved in one
 # run. A benchmark, not a test.
 # Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache]
@@ -16,12 +17,13 @@ config = sys.argv[1] if len(sys.argv) > 1 else "ci"
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
 cache = sys.argv[3] if len(sys.argv) > 3 else None
 threads = tuple(range(1, O.numThreads + 1))
+NAMES = ("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop", "ours, parallelBodies = 1000", "ours, NewtonIntegrator")  # the order of benchmark.shear_cell's results
 results = benchmark.shear_cell(steps, config=config, cache=cache, threads=threads)
 print("(b) shear cell %s, wet13.6nl, %d steps, particle-steps/s (ratio to the built-in law on as many threads):" % (config, steps))
 for t in threads:
     base = results[t][0]["particle_steps_per_s"]
-    for name, r in zip(("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop", "ours, parallelBodies = 1000"), results[t]):
+    for name, r in zip(NAMES, results[t]):
         print("  %d thread(s)  %-32s %10.3g  (%.2f)" % (t, name, r["particle_steps_per_s"], r["particle_steps_per_s"] / base))
-for k, name in enumerate(("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop", "ours, parallelBodies = 1000")):
+for k, name in enumerate(NAMES):
     print("  speed-up from %d threads, %-32s %.2f" % (threads[-1], name, results[threads[-1]][k]["particle_steps_per_s"] / results[1][k]["particle_steps_per_s"]))
 sys.exit(0)

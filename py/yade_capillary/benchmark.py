@@ -167,8 +167,10 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     ompThreads; yade must be started with -j at least the largest): this machine's speed drifts by
     up to 3x within minutes, so thread counts are compared within one run. cache: file of the
     prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
-    fused, ours fused with parallelBodies = 1000 in PendularLoop and PendularIntegrator)} of dicts:
-    the last tells whether their per-body phases gain from threads at the ci cell's 2 200 bodies."""
+    fused, ours fused with parallelBodies = 1000 in PendularLoop and PendularIntegrator, ours fused
+    with YADE's NewtonIntegrator instead of PendularIntegrator)} of dicts: the fourth tells whether
+    the per-body phases gain from threads at the ci cell's 2 200 bodies, the fifth what
+    PendularIntegrator gains."""
     import json
     import tempfile
 
@@ -183,7 +185,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     bodies = [(b.state.pos, b.shape.radius, b.id in set(info["flowing"])) for b in O.bodies]
     dt = O.dt
 
-    def timed(material, loop, nthreads, parallel_bodies=None):
+    def timed(material, loop, nthreads, parallel_bodies=None, integrator=None):
         O.reset()
         O.dt = dt
         mat = O.materials.append(material)
@@ -191,7 +193,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
         # YADE's own setup (NewtonIntegrator) for the built-in law and our Law2 in InteractionLoop;
         # PendularLoop with PendularIntegrator, as scene.engines gives them by default.
-        O.engines = shearcell.run_engines(info, loop, integrator="pendular" if loop == "fused" else "newton")
+        O.engines = shearcell.run_engines(info, loop, integrator=integrator or ("pendular" if loop == "fused" else "newton"))
         for e in O.engines:
             e.ompThreads = nthreads
             if parallel_bodies is not None and hasattr(e, "parallelBodies"):
@@ -207,13 +209,14 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
                                    gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
     loop = lambda: InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
                                    [Law2_ScGeom_ViscElCapPhys_Basic()])
-    runs = {t: [[], [], [], []] for t in threads}
+    runs = {t: [[], [], [], [], []] for t in threads}
     for _ in range(repeats):
         for t in threads:
             runs[t][0].append(timed(builtin_mat(), loop(), t))
             runs[t][1].append(timed(ours_mat(), "standard", t))
             runs[t][2].append(timed(ours_mat(), "fused", t))
             runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=1000))
+            runs[t][4].append(timed(ours_mat(), "fused", t, integrator="newton"))
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
 
 
