@@ -53,7 +53,7 @@ public:
 		((long, nIntegrated, 0, Attr::readonly, "Bodies integrated by this engine's own pass in the last step [-] (0 when the step was handed to the NewtonIntegrator)."))
 		((long, nHandedOver, 0, Attr::readonly, "Steps handed to the NewtonIntegrator's own step since the engine was made [-] (see handedOverBecause)."))
 		((std::string, handedOverBecause, "", Attr::readonly, "Why the last step handed to the NewtonIntegrator was [-]."))
-		((long, parallelBodies, 20000, , "From this many bodies on, the per-body phases (the integration) run on ompThreads threads, below it on one [-]: a parallel region costs more than a short pass (the default was chosen for the zeroing of the force arrays; ./run.sh bench compares it with 1000 on the ci cell)."))
+		((long, parallelBodies, 1000, , "From this many bodies on, the per-body phases (the integration) run on ompThreads threads, below it on one [-]: a parallel region costs more than a short pass (./run.sh bench compares 1000, the default, with 20000, the earlier one, on the ci cell: on two threads its 2 200 bodies gain 8-11 %)."))
 		((Real, bodiesTime, 0, , "Wall time spent in the pass over the bodies since this was last set to 0 [ns].")),
 		/*ctor*/,
 		/*py*/

@@ -167,9 +167,9 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     ompThreads; yade must be started with -j at least the largest): this machine's speed drifts by
     up to 3x within minutes, so thread counts are compared within one run. cache: file of the
     prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
-    fused, ours fused with parallelBodies = 1000 in PendularLoop and PendularIntegrator, ours fused
-    with YADE's NewtonIntegrator instead of PendularIntegrator)} of dicts: the fourth tells whether
-    the per-body phases gain from threads at the ci cell's 2 200 bodies, the fifth what
+    fused, ours fused with parallelBodies = 20000 in PendularLoop and PendularIntegrator, ours fused
+    with YADE's NewtonIntegrator instead of PendularIntegrator)} of dicts: the fourth tells what the
+    per-body phases gain from threads at the ci cell's 2 200 bodies (the default, 1000, against 20000), the fifth what
     PendularIntegrator gains."""
     import json
     import tempfile
@@ -215,7 +215,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             runs[t][0].append(timed(builtin_mat(), loop(), t))
             runs[t][1].append(timed(ours_mat(), "standard", t))
             runs[t][2].append(timed(ours_mat(), "fused", t))
-            runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=1000))
+            runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=20000))
             runs[t][4].append(timed(ours_mat(), "fused", t, integrator="newton"))
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
 

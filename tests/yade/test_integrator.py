@@ -9,7 +9,7 @@
 # - yade -j1: the same operations in the same order on the same numbers: positions, velocities,
 #   angular velocities and orientations bit-identical, and the collider run as often.
 # - yade -j2 (ctest runs this file with -j1 and with -j2): both runs on two threads, the per-body
-#   passes too (parallelBodies = 0; by default they run on one thread below 20 000 bodies). The
+#   passes too (parallelBodies = 0; by default they run on one thread below 1 000 bodies). The
 #   integration of a body does not depend on the others, but the interaction loop's force sums and
 #   the collider's parallel insertion do, so the two runs may differ by round-off: bound 1e-9 of the
 #   scale as in test_loop.py (measured there: at most 2.4e-12 after 2000 steps).
