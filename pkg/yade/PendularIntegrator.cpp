@@ -1,15 +1,11 @@
 #include "PendularIntegrator.hpp"
 #include "Pendular.hpp"
-#include "Prefetch.hpp"
+#include "Passes.hpp"
 
 #include <core/Bound.hpp>
 #include <lib/pyutil/gil.hpp>
 
 #include <chrono>
-
-#ifdef YADE_OPENMP
-#include <omp.h>
-#endif
 
 namespace yade {
 
@@ -92,17 +88,11 @@ std::string PendularIntegrator::unsupported(const Parameters& p, bool& fatal)
 	const auto& bodies = *scene->bodies;
 	const long  n      = long(bodies.size());
 	bodyPointers.resize(n);
+	for (long id = 0; id < n; ++id)
+		bodyPointers[id] = bodies[id].get();
 	int clumps = 0, aspherical = 0, subdomains = 0;
 	for (long id = 0; id < n; ++id) {
-		bodyPointers[id] = bodies[id].get();
-		if (id >= prefetchAhead && bodyPointers[id]) __builtin_prefetch(bodyPointers[id]);
-		const Body* b = id >= prefetchAhead ? bodyPointers[id - prefetchAhead] : nullptr;
-		if (!b) continue;
-		clumps |= !b->isStandalone();
-		aspherical |= p.exactAsphericalRot && b->isAspherical();
-		subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
-	}
-	for (long id = math::max(0L, n - prefetchAhead); id < n; ++id) {
+		if (id + prefetchAhead < n && bodyPointers[id + prefetchAhead]) __builtin_prefetch(bodyPointers[id + prefetchAhead]);
 		const Body* b = bodyPointers[id];
 		if (!b) continue;
 		clumps |= !b->isStandalone();
@@ -135,11 +125,7 @@ void PendularIntegrator::action()
 		newton->action();
 		return;
 	}
-#ifdef YADE_OPENMP
-	const int threads = ompThreads > 0 ? math::min(ompThreads, omp_get_max_threads()) : omp_get_max_threads();
-#else
-	const int threads = 1;
-#endif
+	const int threads = pendular::passThreads(ompThreads);
 	const auto start  = std::chrono::steady_clock::now();
 	const Real flag   = integrate(p, threads);
 	bodiesTime += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
@@ -190,6 +176,7 @@ Real PendularIntegrator::integrate(const Parameters& p, int threads)
 				for (int i = 0; i < 3; i++)
 					if (!(blocked & State::axisDOF(i, false))) linAccel[i] += p.dampGravity ? f[i] / s.mass + p.gravity[i] : f[i] / s.mass;
 			}
+			// With damping = 0, NewtonIntegrator's damping multiplies by exactly 1: skipped.
 			if (s.isDamped && p.damping != 0) cundallDamp2nd(p.damping, dt, s.vel, linAccel);
 			if (!p.dampGravity) {
 				Vector3r g = p.gravity;

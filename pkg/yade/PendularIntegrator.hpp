@@ -1,6 +1,6 @@
 // PendularIntegrator: YADE's NewtonIntegrator step for scenes of standalone spherical bodies, with the
-// bodies' objects prefetched ahead and no per-body function calls; any other scene is handed to the
-// NewtonIntegrator itself.
+// bodies' objects prefetched ahead and, per body, no calls but the force container's; any other scene is
+// handed to the NewtonIntegrator itself.
 #pragma once
 
 #include "YadeHeaders.hpp"
@@ -23,7 +23,7 @@ private:
 	struct Parameters {
 		Real     damping = 0;
 		Vector3r gravity = Vector3r::Zero();
-		bool     dampGravity = true, exactAsphericalRot = true, densityScaling = false;
+		bool     dampGravity = true, exactAsphericalRot = true;
 		int      mask = -1;
 	};
 	void               findNewton(); // into newton

@@ -1,5 +1,5 @@
 #include "PendularLoop.hpp"
-#include "Prefetch.hpp"
+#include "Passes.hpp"
 
 #include <pkg/common/Facet.hpp>
 #include <pkg/common/InsertionSortCollider.hpp>
@@ -205,11 +205,7 @@ void PendularLoop::action()
 	using Clock     = std::chrono::steady_clock;
 	const auto ns   = [](Clock::time_point a, Clock::time_point b) { return Real(std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count()); };
 	const auto t0   = Clock::now();
-#ifdef YADE_OPENMP
-	const int threads = ompThreads > 0 ? math::min(ompThreads, omp_get_max_threads()) : omp_get_max_threads();
-#else
-	const int threads = 1;
-#endif
+	const int threads = pendular::passThreads(ompThreads);
 	// The records belong to one scene, and only to the steps where nothing else reads the objects.
 	// Handed back before the gathering: what the objects get from the records is completed from the
 	// bodies as the records' last step saw them (store).
