@@ -117,6 +117,32 @@ def test_gap_classes_computed_edges(tmp_path):
     assert (g["contact_per_snapshot"], g["straddling_per_snapshot"], g["short_per_snapshot"], g["long_per_snapshot"]) == (15, 0, 9, 3)
 
 
+def test_count_ratio_vs_gap(tmp_path):
+    # The bins of test_gap_classes_computed_edges (edge at a = 0 computed): dry pairs only in the 3 bins
+    # below 0 (15 per snapshot), wet 18 there plus bridges 4, 3, 2, ... above. Expected by hand: wet
+    # over dry at a_max = 0: 18/15; at 7 um: 22/15; at 21 um: 27/15; a_max off an edge, or bins of
+    # another cell: ValueError.
+    edges = np.linspace(-2.1e-5, 6.3e-5, 13)
+    a = (edges[:-1] + edges[1:]) / 2
+    header = "a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3"
+
+    def write(name, n, centres=a):
+        path = tmp_path / name
+        np.savetxt(path, np.column_stack([centres, n, np.ones(12), n, np.ones(12), n]), delimiter=",", header=header, comments="")
+        return str(path)
+
+    dry = write("dry.csv", [5, 5, 5, 0, 0, 0, 0, 0, 0, 0, 0, 0])
+    wet = write("wet.csv", [6, 6, 6, 4, 3, 2, 1, 1, 1, 0, 0, 0])
+    rows = cellanalysis.count_ratio_vs_gap(wet, dry, [0.0, 7e-6, 2.1e-5])
+    assert [r[3] for r in rows] == pytest.approx([18 / 15, 22 / 15, 27 / 15])
+    assert (rows[2][1], rows[2][2]) == (27, 15)
+    with pytest.raises(ValueError, match="not a bin edge"):
+        cellanalysis.count_ratio_vs_gap(wet, dry, [3e-6])
+    other = write("other.csv", [6] * 12, centres=2 * a)
+    with pytest.raises(ValueError, match="different separation bins"):
+        cellanalysis.count_ratio_vs_gap(other, dry, [0.0])
+
+
 def test_force_against_model(tmp_path):
     # A table whose separated bins (9 of 2e-5 m, the bin centred at 0 straddles a = 0) hold exactly the
     # model's bin-averaged force, one bin doubled: the median ratio is 1, the mean weighted by the
