@@ -7,6 +7,7 @@
 # 14 states, and none of its work landed).
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]   (two cases side by side, one core each)
 #   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
+#         | analyse (the fits of every complete case again, cellanalysis.analyse_reduced at Gladkyy's 13 heights)
 #         | status (the fits of every case so far from its reduced snapshots, cellanalysis.interim, written to
 #           CASE/interim/; the wet cases' excess shear stress over the dry band at the same pressure)
 #   STOP: window (default: stop before the first snapshot of the averaging window) | end
@@ -28,15 +29,22 @@ if not 0 < budget_min <= 120:
     raise ValueError("BUDGET_MIN: %g is outside (0, 120] (segments of at most 2 h)" % budget_min)
 if stop not in ("window", "end"):
     raise ValueError("STOP: %r is not one of window, end" % stop)
-if case not in ("prepare", "status") and case not in shearcell.ALL_CASES:
-    raise ValueError("CASE: %r is not one of prepare, status, %s" % (case, ", ".join(shearcell.ALL_CASES)))
+if case not in ("prepare", "status", "analyse") and case not in shearcell.ALL_CASES:
+    raise ValueError("CASE: %r is not one of prepare, status, analyse, %s" % (case, ", ".join(shearcell.ALL_CASES)))
 root = os.path.join("data", "shear_cell_runs", "gladkyy_size")
+if case == "analyse":
+    for c in shearcell.ALL_CASES:
+        if os.path.exists(os.path.join(root, c, "run.json")):
+            fit = cellanalysis.analyse_reduced(os.path.join(root, c), heights=cellanalysis.GLADKYY_HEIGHTS)
+            print("%s: mu %.4f, c %.3f Pa, Rc %s mm, W %s mm" % (c, fit["mu"], fit["c_Pa"], " ".join("%.0f" % (1e3 * x) for x in fit["Rc_m"] if x is not None),
+                                                              " ".join("%.0f" % (1e3 * x) for x in fit["W_m"] if x is not None)))
+    sys.exit(0)
 if case == "status":
     fits = {}
     for c in shearcell.ALL_CASES:
         keep = os.path.join(root, c)
         if os.path.exists(os.path.join(keep, "state.npz")) and glob.glob(os.path.join(keep, "cg_*.npz")):
-            fits[c] = cellanalysis.interim(keep)
+            fits[c] = cellanalysis.interim(keep, heights=cellanalysis.GLADKYY_HEIGHTS)
     print("| case | steps | t [s] | snapshots | mu | c [Pa] | c at mu = %.2f [Pa] | torque [mN m] | contacts per sphere |" % cellanalysis.GLADKYY_MU)
     print("|---|---|---|---|---|---|---|---|---|")
     for c, f in fits.items():
@@ -74,6 +82,6 @@ out = shearcell.run_segment(prepared, os.path.join("results", "shear_cell", "gla
                             until_step=until, keep=os.path.join(root, case))
 print("segment: %(done_steps)d of %(steps)d steps done, t = %(t_s).3f s, %(particle_steps_per_s).3g particle-steps/s, complete %(complete)s" % out)
 if out["complete"]:  # fits from the reduced snapshots (committed), whichever sessions took them
-    fit = cellanalysis.analyse_reduced(os.path.join(root, case))
+    fit = cellanalysis.analyse_reduced(os.path.join(root, case), heights=cellanalysis.GLADKYY_HEIGHTS)
     print(json.dumps({k: fit[k] for k in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "band_points")}, indent=1, default=float))
 sys.exit(0)

@@ -36,6 +36,9 @@ CONVENTIONS = {
 # Gladkyy 2014 §4.1: "tau = mu p + c ... with mu = 0.13 for the particular granular material", one slope
 # for the dry and the wet materials (his Fig. 7), c per liquid content.
 GLADKYY_MU = 0.13
+# Gladkyy 2014 §4.2: band centres and widths "obtained for 13 different heights" (Fig. 6; which heights
+# is not stated: here evenly from 0.2 to 0.7 of the bed height, as for the 5 heights of the smaller cells).
+GLADKYY_HEIGHTS = 13
 
 
 def analysis_grid(cfg):
@@ -303,12 +306,12 @@ def analyse_reduced(rundir, gamma_dot_min=None, heights=5, outdir=None, run=None
     return out
 
 
-def interim(keep, outdir=None):
+def interim(keep, outdir=None, heights=5):
     """The fits of a run in segments before it ends (analyse_reduced of its reduced snapshots so far),
     from what run_segment keeps in `keep`: state.npz (configuration, progress), torque.csv and
     cg_*.npz. The torques are the means of the records since the first snapshot (those of the second
     half of the run when it ends; None before the first save after it). Writes fits.json, profiles and run.json to outdir (default
-    keep/interim); returns the fits with done_steps, steps and t_s of the run so far."""
+    keep/interim); heights: of the band fits (analyse_reduced). Returns the fits with done_steps, steps and t_s of the run so far."""
     outdir = os.path.join(keep, "interim") if outdir is None else outdir
     with np.load(os.path.join(keep, "state.npz")) as d:
         meta, flowing = json.loads(str(d["meta"])), len(d["ids_flowing"])
@@ -328,7 +331,7 @@ def interim(keep, outdir=None):
     os.makedirs(outdir, exist_ok=True)
     with open(os.path.join(outdir, "run.json"), "w") as f:
         json.dump(dict(run, done_steps=meta["done_steps"], t_s=meta["time_s"]), f, indent=1)
-    out = analyse_reduced(keep, outdir=outdir, run=run)
+    out = analyse_reduced(keep, heights=heights, outdir=outdir, run=run)
     return dict(out, done_steps=meta["done_steps"], steps=steps, t_s=meta["time_s"])
 
 

@@ -361,3 +361,7 @@ def test_interim(rundir, tmp_path):
     np.savetxt(keep / "torque.csv", [(-1.0, -9.0, 9.0)], delimiter=",", header="time_s,torque_rotating_Nm,torque_static_Nm", comments="")
     out = cellanalysis.interim(str(keep))
     assert out["torque_Nm"] is None and out["torque_static_Nm"] is None and out["Rc_m"] == pytest.approx(ref["Rc_m"], rel=1e-12)
+    # Gladkyy's 13 heights (§4.2) reach analyse_reduced: 13 band fits, the same as its own at 13 heights
+    out = cellanalysis.interim(str(keep), heights=cellanalysis.GLADKYY_HEIGHTS)
+    ref13 = cellanalysis.analyse_reduced(str(keep), heights=13, outdir=str(tmp_path), run=json.loads((rundir / "run.json").read_text()))
+    assert len(out["band_fits"]) == 13 and out["Rc_m"] == pytest.approx(ref13["Rc_m"], rel=1e-12)
