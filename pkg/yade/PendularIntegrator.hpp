@@ -29,7 +29,7 @@ private:
 	void               findNewton(); // into newton
 	Parameters         parameters() const; // of the NewtonIntegrator findNewton found
 	// Why this step cannot be done here ("" if it can); fatal: a scene the engine order makes wrong.
-	std::string unsupported(const Parameters& p, bool& fatal);
+	std::string unsupported(const Parameters& p, int threads, bool& fatal);
 	Real        integrate(const Parameters& p, int threads); // returns NewtonIntegrator's maxVelocitySq
 	// What findNewton found in the engine list it last scanned.
 	std::vector<boost::weak_ptr<Engine>> scannedEngines;
