@@ -1,8 +1,12 @@
 // What the per-body and per-interaction passes of PendularLoop and PendularIntegrator share: the
-// prefetch and the number of OpenMP threads.
+// prefetch, the bodies' pointers of a step and the number of OpenMP threads.
 #pragma once
 
+#include <core/Bound.hpp>
+#include <core/State.hpp>
+
 #include <cstddef>
+#include <vector>
 
 #ifdef YADE_OPENMP
 #include <omp.h>
@@ -19,6 +23,18 @@ namespace pendular {
 		for (std::size_t offset = 0; offset < sizeof(T); offset += 64)
 			__builtin_prefetch(c + offset, write);
 	}
+	// What a pass over the bodies read of each one, for a later pass of the same step: the State and
+	// Bound of every body by id (nullptr: erased body), and whether any body is a clump or a clump's member,
+	// aspherical (Body::isAspherical), or of another subdomain (yade.mpy). Filled by PendularLoop's gathering
+	// and used by PendularIntegrator in the same step (see PendularIntegrator::unsupported), so that a
+	// step reads each Body once.
+	struct BodyPointers {
+		const void*                   scene = nullptr; // the Scene and its iteration they were read in
+		long                          iter  = -1;
+		std::vector<State*>           states;
+		std::vector<const Bound*>     bounds;
+		int                           clumps = 0, aspherical = 0, subdomains = 0;
+	};
 	// The threads of an engine's passes: its ompThreads if set (> 0), at most OpenMP's maximum.
 	inline int passThreads(int ompThreads)
 	{

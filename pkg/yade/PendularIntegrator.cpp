@@ -1,11 +1,12 @@
 #include "PendularIntegrator.hpp"
 #include "Pendular.hpp"
-#include "Passes.hpp"
+#include "PendularLoop.hpp"
 
 #include <core/Bound.hpp>
 #include <lib/pyutil/gil.hpp>
 
 #include <chrono>
+#include <set>
 
 namespace yade {
 
@@ -37,8 +38,13 @@ void PendularIntegrator::findNewton()
 	if (!same) {
 		scannedEngines.clear();
 		newton.reset();
+		loop.reset();
 		stiffnessTimeStepper = false;
 		bool before          = true; // the NewtonIntegrator is the last one before this engine
+		// Between the PendularLoop and this engine, engines that change no body's State or Bound object,
+		// clump membership, flags or subdomain, nor the body container (the kinematic engines of our
+		// scenes set velocities only): then the loop's gathering stands for this engine's check.
+		static const std::set<std::string> harmless { "PendularCheck", "RotationEngine", "TranslationEngine", "NewtonIntegrator" };
 		for (const auto& engine : scene->engines) {
 			scannedEngines.push_back(engine);
 			if (engine.get() == this) before = false;
@@ -46,6 +52,10 @@ void PendularIntegrator::findNewton()
 			// Matched by class name: only the members of the base Engine (dead, scene, action) are used in C++.
 			const std::string name = engine->getClassName();
 			if (before && name == "NewtonIntegrator") newton = engine;
+			if (before) {
+				if (dynamic_cast<const PendularLoop*>(engine.get())) loop = engine;
+				else if (!harmless.count(name)) loop.reset();
+			}
 			stiffnessTimeStepper = stiffnessTimeStepper || name == "GlobalStiffnessTimeStepper";
 		}
 	}
@@ -84,40 +94,46 @@ std::string PendularIntegrator::unsupported(const Parameters& p, int threads, bo
 	if (scene->trackEnergy) return "energy tracking (O.trackEnergy)";
 	if (stiffnessTimeStepper) return "density scaling (GlobalStiffnessTimeStepper)";
 	if (p.mask > 0) return "NewtonIntegrator.mask";
-	// The bodies, read once here (BodyContainer's operator[] is a call into YADE) for the pass as well.
-	const auto& bodies = *scene->bodies;
-	const long  n      = long(bodies.size());
-	bodyPointers.resize(n);
-	int clumps = 0, aspherical = 0, subdomains = 0;
-	// On the integration's threads: in a Gladkyy-size cell this read of every Body is 5 % of a step.
+	// Each body's State and Bound and the checks below: from the PendularLoop's gathering of this step
+	// if nothing between them can have changed them (see findNewton), else read here (in a Gladkyy-size
+	// cell a read of every Body is 5 % of a step).
+	const auto& container = *scene->bodies;
+	const long  n         = long(container.size());
+	bodies                = nullptr;
+	if (loop && !loop->dead) {
+		const pendular::BodyPointers& gathered = static_cast<const PendularLoop&>(*loop).gatheredBodies();
+		if (gathered.scene == scene && gathered.iter == scene->iter && long(gathered.states.size()) == n) bodies = &gathered;
+	}
+	fromLoop = bodies != nullptr;
+	if (!bodies) {
+		ownPointers.states.resize(n);
+		ownPointers.bounds.resize(n);
+		int clumps = 0, aspherical = 0, subdomains = 0;
 #ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) if (n >= parallelBodies)
-#endif
-	{
-#ifdef YADE_OPENMP
-#pragma omp for schedule(static)
-#endif
-		for (long id = 0; id < n; ++id)
-			bodyPointers[id] = bodies[id].get();
-#ifdef YADE_OPENMP
-#pragma omp for schedule(static) reduction(| : clumps, aspherical, subdomains)
+#pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallelBodies) reduction(| : clumps, aspherical, subdomains)
 #endif
 		for (long id = 0; id < n; ++id) {
-			if (id + prefetchAhead < n && bodyPointers[id + prefetchAhead]) __builtin_prefetch(bodyPointers[id + prefetchAhead]);
-			const Body* b = bodyPointers[id];
+			if (id + prefetchAhead < n && container[id + prefetchAhead]) __builtin_prefetch(container[id + prefetchAhead].get());
+			const Body* b           = container[id].get();
+			ownPointers.states[id] = b ? b->state.get() : nullptr;
+			ownPointers.bounds[id] = b ? b->bound.get() : nullptr;
 			if (!b) continue;
 			clumps |= !b->isStandalone();
-			aspherical |= p.exactAsphericalRot && b->isAspherical();
+			aspherical |= b->isAspherical();
 			subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
 		}
+		ownPointers.clumps     = clumps;
+		ownPointers.aspherical = aspherical;
+		ownPointers.subdomains = subdomains;
+		bodies                 = &ownPointers;
 	}
-	if (subdomains) {
+	if (bodies->subdomains) {
 		fatal = true;
 		return "PendularIntegrator: bodies of other subdomains (yade.mpy): its communication engines are placed next to the "
 		       "NewtonIntegrator; build the engines with yade_capillary.scene.engines(integrator='newton')";
 	}
-	if (clumps) return "clumps";
-	if (aspherical) return "aspherical bodies with NewtonIntegrator.exactAsphericalRot";
+	if (bodies->clumps) return "clumps";
+	if (p.exactAsphericalRot && bodies->aspherical) return "aspherical bodies with NewtonIntegrator.exactAsphericalRot";
 	return "";
 }
 
@@ -139,7 +155,7 @@ void PendularIntegrator::action()
 		return;
 	}
 	const auto start = std::chrono::steady_clock::now();
-	const Real flag   = integrate(p, threads);
+	const Real flag  = integrate(p, *bodies, threads);
 	bodiesTime += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
 	gilLock lock;
 	try {
@@ -154,11 +170,12 @@ void PendularIntegrator::action()
 // energy tracking, density scaling or mask, in its order of operations (the same numbers bit for bit:
 // tests/yade/test_integrator.py). Returns what NewtonIntegrator leaves in maxVelocitySq: the largest
 // over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
-Real PendularIntegrator::integrate(const Parameters& p, int threads)
+Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads)
 {
-	const long      n      = long(bodyPointers.size()); // filled by unsupported() in this step
-	const Body* const* bodies = bodyPointers.data();
-	const Real      dt     = scene->dt;
+	const long          n      = long(bodies.states.size());
+	State* const*       states = bodies.states.data();
+	const Bound* const* bounds = bodies.bounds.data();
+	const Real          dt     = scene->dt;
 	ForceContainer& forces = scene->forces;
 	forces.sync();
 	Real flag  = 0;
@@ -167,15 +184,12 @@ Real PendularIntegrator::integrate(const Parameters& p, int threads)
 #pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallelBodies) reduction(max : flag) reduction(+ : count)
 #endif
 	for (long id = 0; id < n; ++id) {
-		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead]);
-		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
-			const Body& ahead = *bodies[id + prefetchAhead];
-			prefetchObject<1>(ahead.state.get());
-			if (ahead.bound) __builtin_prefetch(ahead.bound.get());
+		if (id + prefetchAhead < n && states[id + prefetchAhead]) {
+			prefetchObject<1>(states[id + prefetchAhead]);
+			if (bounds[id + prefetchAhead]) __builtin_prefetch(bounds[id + prefetchAhead]);
 		}
-		const Body* b = bodies[id];
-		if (!b) continue;
-		State&         s       = *b->state;
+		if (!states[id]) continue; // an erased body
+		State&         s       = *states[id];
 		const Vector3r f       = forces.getForce(Body::id_t(id));
 		const Vector3r m       = forces.getTorque(Body::id_t(id));
 		const unsigned blocked = s.blockedDOFs;
@@ -222,10 +236,11 @@ Real PendularIntegrator::integrate(const Parameters& p, int threads)
 		s.ori.normalize();
 		++count;
 		// NewtonIntegrator::saveMaximaDisplacement
-		if (!b->bound) continue;
-		const Vector3r disp    = s.pos - b->bound->refPos;
+		const Bound* bound = bounds[id];
+		if (!bound) continue;
+		const Vector3r disp    = s.pos - bound->refPos;
 		const Real     maxDisp = math::max(math::abs(disp[0]), math::max(math::abs(disp[1]), math::abs(disp[2])));
-		flag                   = math::max(flag, (!maxDisp || maxDisp < b->bound->sweepLength) ? Real(0.5) : Real(2));
+		flag                   = math::max(flag, (!maxDisp || maxDisp < bound->sweepLength) ? Real(0.5) : Real(2));
 	}
 	nIntegrated = count;
 	return flag;

@@ -3,6 +3,7 @@
 // handed to the NewtonIntegrator itself.
 #pragma once
 
+#include "Passes.hpp"
 #include "YadeHeaders.hpp"
 
 #include <core/GlobalEngine.hpp>
@@ -26,16 +27,20 @@ private:
 		bool     dampGravity = true, exactAsphericalRot = true;
 		int      mask = -1;
 	};
-	void               findNewton(); // into newton
+	void               findNewton(); // into newton and loop
 	Parameters         parameters() const; // of the NewtonIntegrator findNewton found
 	// Why this step cannot be done here ("" if it can); fatal: a scene the engine order makes wrong.
 	std::string unsupported(const Parameters& p, int threads, bool& fatal);
-	Real        integrate(const Parameters& p, int threads); // returns NewtonIntegrator's maxVelocitySq
-	// What findNewton found in the engine list it last scanned.
+	// NewtonIntegrator's maxVelocitySq after the step of the bodies in `bodies` (filled by unsupported)
+	Real integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads);
+	// What findNewton found in the engine list it last scanned: the NewtonIntegrator; the PendularLoop before
+	// it if every engine between them is known to leave the bodies' objects and flags alone (see unsupported).
 	std::vector<boost::weak_ptr<Engine>> scannedEngines;
-	shared_ptr<Engine>         newton;
-	bool                       stiffnessTimeStepper = false;
-	std::vector<const Body*>   bodyPointers; // of this step, by id (nullptr: erased)
+	shared_ptr<Engine>                   newton;
+	shared_ptr<Engine>                   loop;
+	bool                                 stiffnessTimeStepper = false;
+	pendular::BodyPointers               ownPointers; // when the loop's cannot be used
+	const pendular::BodyPointers*        bodies = nullptr; // of this step: the loop's or ownPointers
 
 public:
 	// clang-format off
@@ -44,8 +49,11 @@ public:
 		"standalone bodies (no clumps) with spherical inertia: the same leapfrog, Cundall damping, gravity, blocked degrees of "
 		"freedom and the same flag for the collider (NewtonIntegrator.maxVelocitySq, written back into it), in the same order "
 		"of operations, so that the positions and velocities are those of NewtonIntegrator bit for bit, without its "
-		"per-body function calls and with each body's Body, State and Bound prefetched ahead (at the scale of Gladkyy 2014's "
-		"cell these objects do not fit in the caches, and NewtonIntegrator waits on them in turn). Its parameters are read "
+		"per-body function calls and with each body's State and Bound prefetched ahead (at the scale of Gladkyy 2014's "
+		"cell these objects do not fit in the caches, and NewtonIntegrator waits on them in turn). Each Body is read once per "
+		"step: the State and Bound pointers and the check for clumps come from the gathering of the :yref:`PendularLoop` before "
+		"it when the engines between them are only PendularCheck, RotationEngine, TranslationEngine and the NewtonIntegrator, "
+		"else from a pass of its own. Its parameters are read "
 		"from the NewtonIntegrator at every step, so that the NewtonIntegrator stays the one place to set gravity and damping. "
 		"Any other scene (clumps, aspherical bodies with exactAsphericalRot, a periodic cell, energy tracking, density scaling, "
 		"a mask) is handed to the NewtonIntegrator's own step (see nHandedOver). yade.mpy is not supported: it inserts its "
@@ -53,6 +61,7 @@ public:
 		((long, nIntegrated, 0, Attr::readonly, "Bodies integrated by this engine's own pass in the last step [-] (0 when the step was handed to the NewtonIntegrator)."))
 		((long, nHandedOver, 0, Attr::readonly, "Steps handed to the NewtonIntegrator's own step since the engine was made [-] (see handedOverBecause)."))
 		((std::string, handedOverBecause, "", Attr::readonly, "Why the last step handed to the NewtonIntegrator was [-]."))
+		((bool, fromLoop, false, Attr::readonly, "Whether the last step took the bodies' State and Bound objects and the check for clumps, aspherical bodies and subdomains from the gathering of the PendularLoop before it [-] (false: from a pass over the bodies of its own, as when an engine between them may change the bodies, e.g. a PyRunner)."))
 		((long, parallelBodies, 1000, , "From this many bodies on, the per-body phases (the integration) run on ompThreads threads, below it on one [-]: a parallel region costs more than a short pass (./run.sh bench compares 1000, the default, with 20000, the earlier one, on the ci cell: on two threads its 2 200 bodies gain 8-11 %)."))
 		((Real, bodiesTime, 0, , "Wall time spent in the pass over the bodies since this was last set to 0 [ns].")),
 		/*ctor*/,

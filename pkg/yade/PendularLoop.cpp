@@ -114,6 +114,12 @@ void PendularLoop::gather(int threads)
 	const size_t n      = bodies.size();
 	particles.resize(n);
 	near.resize(n);
+	bodyPointers.scene = nullptr; // valid once the pass is complete
+	bodyPointers.states.resize(n);
+	bodyPointers.bounds.resize(n);
+	State** const       states = bodyPointers.states.data();
+	const Bound** const bounds = bodyPointers.bounds.data();
+	int                 clumps = 0, aspherical = 0, subdomains = 0;
 	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
 	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
 	// The bound on the gaps of potential pairs. A pair checked at step s with gap g(s) stores
@@ -129,7 +135,7 @@ void PendularLoop::gather(int threads)
 	epoch.resize(n);
 #ifdef YADE_OPENMP
 #pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2) \
-        reduction(min : rmin)
+        reduction(min : rmin) reduction(| : clumps, aspherical, subdomains)
 #endif
 	for (size_t id = 0; id < n; ++id) {
 		// Two levels: the Body, then, once it is cached, its State and Shape (a sphere's radius is on
@@ -144,8 +150,14 @@ void PendularLoop::gather(int threads)
 		Particle&   p = particles[id];
 		const auto& b = bodies[id];
 		near[id]      = Near { Vector3r::Zero(), 0 };
+		states[id]    = b ? b->state.get() : nullptr;
+		bounds[id]    = b ? b->bound.get() : nullptr;
 		if (!b) p.kind = missing;
 		else {
+			// What PendularIntegrator checks of every body (see pendular::BodyPointers).
+			clumps |= !b->isStandalone();
+			aspherical |= b->isAspherical();
+			subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
 			const State& s = *b->state;
 			p.pos          = s.pos;
 			p.vel          = s.vel;
@@ -178,8 +190,13 @@ void PendularLoop::gather(int threads)
 		restart  = math::max(restart, int(epoch[id].radius != near[id].radius));
 		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
 	}
-	const Real move = math::sqrt(move2);
-	fullCheck       = restart || films || !(move < epochMove * rmin);
+	bodyPointers.clumps     = clumps;
+	bodyPointers.aspherical = aspherical;
+	bodyPointers.subdomains = subdomains;
+	bodyPointers.iter       = scene->iter;
+	bodyPointers.scene      = scene;
+	const Real move         = math::sqrt(move2);
+	fullCheck               = restart || films || !(move < epochMove * rmin);
 	if (fullCheck) {
 		epoch             = near;
 		epochDisplacement = 0;

@@ -1,6 +1,7 @@
 // PendularLoop: YADE's InteractionLoop with a fused pass for the interactions of yade-capillary.
 #pragma once
 
+#include "Passes.hpp"
 #include "Pendular.hpp"
 #include <core/InteractionLoop.hpp>
 
@@ -68,6 +69,8 @@ public:
 	// (yade_capillary.objects.guard, run when yade_capillary.scene is imported).
 	static bool readersGuarded;
 	static void guardReaders() { readersGuarded = true; }
+	// What this step's gathering read of every body (see pendular::BodyPointers).
+	const pendular::BodyPointers& gatheredBodies() const { return bodyPointers; }
 	DECLARE_LOGGER;
 
 private:
@@ -139,6 +142,7 @@ private:
 	std::vector<Slot>                  slots;
 	bool                               removeUnseen = false;
 	std::vector<Particle>              particles;
+	pendular::BodyPointers             bodyPointers;
 	// The part of a Particle that the check of a potential pair reads, 32 B (two per cache line):
 	// the centre and the radius plus the reach, signed: > 0 a PendularMat sphere of this subdomain,
 	// < 0 (negated) one of another subdomain, 0 any other body.

@@ -15,9 +15,14 @@
 #   scale as in test_loop.py (measured there: at most 2.4e-12 after 2000 steps).
 # - A scene with a clump is handed to NewtonIntegrator's own step (nHandedOver counts the steps),
 #   with the same results as NewtonIntegrator alone.
+# - The bodies' objects and the check for clumps come from PendularLoop's gathering of the same step
+#   (fromLoop) in these scenes, and from a pass of the integrator's own when an engine between them may
+#   change the bodies: a PyRunner there that makes a sphere aspherical at step 500 (the body container
+#   unchanged) must have the step handed over from that step on, with the same results as
+#   NewtonIntegrator alone.
 # - Engine lists that would move the bodies twice or not at all raise a ValueError naming the cause.
 from yade import O
-from yade.wrapper import NewtonIntegrator
+from yade.wrapper import NewtonIntegrator, PyRunner
 
 from yade_capillary import scene, stress
 from yade_capillary.testing import Checker
@@ -29,7 +34,7 @@ RMIN = 0.5e-3
 parallel = O.numThreads > 1
 
 
-def build(box, damping, damp_gravity, integrator, clump=False):
+def build(box, damping, damp_gravity, integrator, clump=False, extra=()):
     stress.box_packing(300, "willett_full", rmin=RMIN, ratio=2.0, box=box, porosity=0.85, speed=1.0, friction=0.3)
     spheres = [b for b in O.bodies if b.shape.__class__.__name__ == "Sphere"]
     spheres[0].state.isDamped = False
@@ -39,7 +44,7 @@ def build(box, damping, damp_gravity, integrator, clump=False):
     spheres[3].state.vel, spheres[3].state.angVel = (0.01, -0.02, 0.005), (3.0, 1.0, -2.0)
     if clump:
         O.bodies.clump([spheres[4].id, spheres[5].id])
-    O.engines = scene.engines(gravity=(0, 0, -9.81), damping=damping, integrator=integrator)
+    O.engines = scene.engines(gravity=(0, 0, -9.81), damping=damping, integrator=integrator, extra=extra)
     for e in O.engines:
         if isinstance(e, NewtonIntegrator):
             e.dampGravity = damp_gravity
@@ -65,9 +70,9 @@ for box in ("walls", "facets"):
         tag = "%s, damping %g, dampGravity %s, %d thread(s)" % (box, damping, damp_gravity, O.numThreads)
         ref, ref_runs, _ = build(box, damping, damp_gravity, "newton")
         got, runs, integrator = build(box, damping, damp_gravity, "pendular")
-        ck.true(integrator.nIntegrated == len(ref) and integrator.nHandedOver == 0,
-                "%s: PendularIntegrator integrated all %d bodies itself (%d) and handed no step over (%d: %s)"
-                % (tag, len(ref), integrator.nIntegrated, integrator.nHandedOver, integrator.handedOverBecause))
+        ck.true(integrator.nIntegrated == len(ref) and integrator.nHandedOver == 0 and integrator.fromLoop,
+                "%s: PendularIntegrator integrated all %d bodies itself (%d), from PendularLoop's gathering (%s), and handed no step "
+                "over (%d: %s)" % (tag, len(ref), integrator.nIntegrated, integrator.fromLoop, integrator.nHandedOver, integrator.handedOverBecause))
         ck.true(10 < runs == ref_runs < STEPS, "%s: the collider ran %d times, %d with NewtonIntegrator alone (its flag maxVelocitySq)"
                 % (tag, runs, ref_runs))
         if parallel:
@@ -85,13 +90,39 @@ ck.true(integrator.nHandedOver == STEPS and integrator.nIntegrated == 0 and inte
                                                                                           integrator.handedOverBecause))
 ck.true(runs == ref_runs and (got == ref or worst(ref, got) <= BOUND), "scene with a clump: the same results as NewtonIntegrator alone")
 
+# A PyRunner between PendularLoop and the integrators that makes a sphere aspherical during the run (with
+# unequal moments of inertia, so that NewtonIntegrator's aspherical rotation gives another orientation).
+CHANGE_AT = 500
+
+
+def aspherical_once():
+    if O.iter == CHANGE_AT:
+        b = [b for b in O.bodies if b.shape.__class__.__name__ == "Sphere"][6]
+        b.aspherical = True
+        b.state.inertia = (b.state.inertia[0], 2 * b.state.inertia[0], 3 * b.state.inertia[0])
+
+
+ref, ref_runs, _ = build("walls", 0.0, True, "newton", extra=[PyRunner(command="aspherical_once()", iterPeriod=1)])
+got, runs, integrator = build("walls", 0.0, True, "pendular", extra=[PyRunner(command="aspherical_once()", iterPeriod=1)])
+ck.true(not integrator.fromLoop and integrator.nHandedOver == STEPS - CHANGE_AT and integrator.handedOverBecause.startswith("aspherical"),
+        "a PyRunner between the loop and the integrators makes a sphere aspherical at step %d: the bodies read by the integrator "
+        "itself (fromLoop %s) and the steps from then on handed to NewtonIntegrator (%d of %d, because %r)"
+        % (CHANGE_AT, integrator.fromLoop, integrator.nHandedOver, STEPS, integrator.handedOverBecause))
+if parallel:
+    ck.true(runs == ref_runs and worst(ref, got) <= BOUND, "aspherical from step %d: the results of NewtonIntegrator alone within %g "
+            "(largest difference %.3g)" % (CHANGE_AT, BOUND, worst(ref, got)))
+else:
+    ck.true(runs == ref_runs and got == ref, "aspherical from step %d: the results of NewtonIntegrator alone, bit for bit (largest "
+            "difference %.3g)" % (CHANGE_AT, worst(ref, got)))
+
 # An engine that changes what NewtonIntegrator does, added to the list of a running scene (the
 # integrator scans the list again when it changes): GlobalStiffnessTimeStepper may scale densities.
 from yade.wrapper import GlobalStiffnessTimeStepper  # noqa: E402
 
 O.engines = O.engines[:-1] + [GlobalStiffnessTimeStepper(timestepSafetyCoefficient=0.1, defaultDt=O.dt), O.engines[-1]]
+handed = integrator.nHandedOver
 O.step()
-ck.true(integrator.handedOverBecause.endswith("(GlobalStiffnessTimeStepper)") and integrator.nHandedOver == STEPS + 1,
+ck.true(integrator.handedOverBecause.endswith("(GlobalStiffnessTimeStepper)") and integrator.nHandedOver == handed + 1,
         "GlobalStiffnessTimeStepper added to a running scene: the step handed to NewtonIntegrator (%r)" % integrator.handedOverBecause)
 
 # Engine lists that would move every body twice, or never.
