@@ -3,15 +3,18 @@
 #include "PendularLoop.hpp"
 
 #include <core/Bound.hpp>
+#include <pkg/dem/NewtonIntegrator.hpp>
 #include <lib/pyutil/gil.hpp>
 
 #include <chrono>
+#include <cstring>
 #include <set>
 
 namespace yade {
 
 YADE_PLUGIN((PendularIntegrator));
 CREATE_LOGGER(PendularIntegrator);
+std::atomic<long> PendularIntegrator::newtonVersion { 0 };
 
 namespace {
 	namespace py = boost::python;
@@ -39,6 +42,7 @@ void PendularIntegrator::findNewton()
 		scannedEngines.clear();
 		newton.reset();
 		loop.reset();
+		cachedNewton = nullptr; // another list: its NewtonIntegrator's parameters are read again (see refresh)
 		stiffnessTimeStepper = false;
 		bool before          = true; // the NewtonIntegrator is the last one before this engine
 		// Between the PendularLoop and this engine, engines that change no body's State or Bound object,
@@ -137,10 +141,61 @@ std::string PendularIntegrator::unsupported(const Parameters& p, int threads, bo
 	return "";
 }
 
+// Where the installed YADE keeps NewtonIntegrator::maxVelocitySq: the headers' offset (YADE 2025.2; the
+// members that Debian's 2023.02a lacks come after it), checked by setting the attribute through Python to
+// two sentinels in turn; if the double there does not follow them, the only offset before it that does.
+// The attribute's value is restored. Called with the GIL.
+long PendularIntegrator::probeFlag() const
+{
+	py::object       py(newton);
+	const Real       saved  = py::extract<Real>(py.attr("maxVelocitySq"));
+	const char*      base   = reinterpret_cast<const char*>(newton.get());
+	const long       header = long(reinterpret_cast<const char*>(&static_cast<const NewtonIntegrator*>(newton.get())->maxVelocitySq) - base);
+	const Real       sentinels[2] = { 1.2345678901234567e-101, -7.654321098765432e+99 };
+	std::vector<long> found;
+	for (long offset = header; offset >= 0; offset -= long(sizeof(Real)))
+		found.push_back(offset);
+	for (const Real value : sentinels) {
+		py.attr("maxVelocitySq") = value;
+		std::vector<long> still;
+		for (const long offset : found) {
+			Real there;
+			std::memcpy(&there, base + offset, sizeof(Real));
+			if (there == value) still.push_back(offset);
+		}
+		found.swap(still);
+	}
+	py.attr("maxVelocitySq") = saved;
+	return found.empty() ? -1 : found.front(); // the headers' offset first
+}
+
+void PendularIntegrator::refresh()
+{
+	gilLock lock;
+	try {
+		findNewton();
+	} catch (const std::exception&) {
+		return; // no NewtonIntegrator, or a live one: the step raises
+	}
+	cached        = parameters();
+	cachedVersion = newtonVersion;
+	if (cachedNewton != newton.get()) {
+		cachedNewton = newton.get();
+		try {
+			flagOffset = probeFlag();
+		} catch (const py::error_already_set&) {
+			PyErr_Clear();
+			flagOffset = -1;
+		}
+		if (flagOffset < 0) LOG_WARN("PendularIntegrator: NewtonIntegrator.maxVelocitySq not found in the object; it is set through Python at every step");
+	}
+}
+
 void PendularIntegrator::action()
 {
 	findNewton();
-	const Parameters  p       = parameters();
+	if (cachedNewton != newton.get() || cachedVersion != newtonVersion) refresh(); // takes the GIL
+	const Parameters  p       = cached;
 	const int         threads = pendular::passThreads(ompThreads);
 	bool              fatal   = false;
 	const std::string why     = unsupported(p, threads, fatal);
@@ -157,6 +212,10 @@ void PendularIntegrator::action()
 	const auto start = std::chrono::steady_clock::now();
 	const Real flag  = integrate(p, *bodies, threads);
 	bodiesTime += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+	if (flagOffset >= 0) {
+		std::memcpy(reinterpret_cast<char*>(newton.get()) + flagOffset, &flag, sizeof(Real));
+		return;
+	}
 	gilLock lock;
 	try {
 		py::object(newton).attr("maxVelocitySq") = flag;

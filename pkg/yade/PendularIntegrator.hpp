@@ -9,12 +9,18 @@
 #include <core/GlobalEngine.hpp>
 
 #include <boost/weak_ptr.hpp>
+#include <atomic>
 
 namespace yade {
 
 class PendularIntegrator : public GlobalEngine {
 public:
 	void action() override;
+	// Reads the NewtonIntegrator's parameters now, in the calling thread (Python: before O.run, so that the
+	// simulation thread need not take the GIL); does nothing if there is no NewtonIntegrator before it.
+	void refresh();
+	// Called when a NewtonIntegrator's attribute changed (Python: its setters, wrapped by yade_capillary).
+	static void newtonChanged() { ++newtonVersion; }
 	DECLARE_LOGGER;
 
 private:
@@ -28,7 +34,20 @@ private:
 		int      mask = -1;
 	};
 	void               findNewton(); // into newton and loop
-	Parameters         parameters() const; // of the NewtonIntegrator findNewton found
+	Parameters         parameters() const; // of the NewtonIntegrator findNewton found (takes the GIL)
+	long               probeFlag() const;  // see flagOffset
+	// The NewtonIntegrator's parameters and where its maxVelocitySq is, read through Python (with the GIL)
+	// by refresh() when they may have changed: another NewtonIntegrator, or newtonVersion moved on.
+	// Reading them at every step made the simulation thread take the GIL at every step, and YADE's
+	// O.reset() (O.load, ...) holds the GIL while it waits for the step in progress to end: a step
+	// waiting for the GIL then never ends (a hang seen in test_film after O.pause(); O.wait(); O.reset()).
+	Parameters          cached;
+	const Engine*       cachedNewton  = nullptr;
+	long                cachedVersion = -1;
+	// Byte offset of NewtonIntegrator::maxVelocitySq in the installed YADE's object, found by probeFlag
+	// (-1: not found; the flag is then written through Python, with the GIL, at every step).
+	long                flagOffset = -1;
+	static std::atomic<long> newtonVersion; // moved on by yade_capillary's setters of NewtonIntegrator's attributes
 	// Why this step cannot be done here ("" if it can); fatal: a scene the engine order makes wrong.
 	std::string unsupported(const Parameters& p, int threads, bool& fatal);
 	// NewtonIntegrator's maxVelocitySq after the step of the bodies in `bodies` (filled by unsupported)
@@ -66,6 +85,8 @@ public:
 		((Real, bodiesTime, 0, , "Wall time spent in the pass over the bodies since this was last set to 0 [ns].")),
 		/*ctor*/,
 		/*py*/
+		.def("refresh", &PendularIntegrator::refresh, "Read the parameters of the NewtonIntegrator before it now (yade_capillary calls this before O.run; see newtonChanged).")
+		.def("newtonChanged", &PendularIntegrator::newtonChanged, "Note that a NewtonIntegrator's attribute changed: its parameters are read again at the next step (yade_capillary's setters call this).").staticmethod("newtonChanged")
 	);
 	// clang-format on
 };

@@ -10,6 +10,9 @@ that reads or changes those objects so that it calls PendularLoop.sync first:
   that the loop reads the changed objects at its next step), Interaction.geom, .phys and .isActive
   (assigning), Serializable.dict;
 * O.save and O.saveTmp, Law2_ScGeom_PendularPhys_Bridge.liquidTotals (reading);
+* NewtonIntegrator's damping, gravity, dampGravity, exactAsphericalRot and mask (assigning: noted for
+  PendularIntegrator) and O.run (PendularIntegrator.refresh first), so that the simulation thread does
+  not take the GIL at every step;
 * YADE's utils functions written in C++ (yade._utils: getStress, setContactFriction, createInteraction, ...;
   sync and drop), also under the names that yade's launcher imported into __main__.
 
@@ -45,6 +48,25 @@ def _calling(f, sync, drop):
     return call
 
 
+def _notifying(fset, changed):
+    def put(self, value):
+        fset(self, value)
+        changed()
+    return put
+
+
+def _refreshing(run):
+    @functools.wraps(run)
+    def call(self, *args, **kw):
+        import yade.wrapper as w
+        for e in self.engines:
+            if isinstance(e, w.PendularIntegrator):
+                e.refresh()
+        return run(self, *args, **kw)
+    call.__doc__ = (run.__doc__ or "") + "\n(yade-capillary: PendularIntegrator reads its NewtonIntegrator's parameters first)"
+    return call
+
+
 def guard():
     """Wrap the Python paths that read or change interactions (once per process), then let
     PendularLoop keep records."""
@@ -76,5 +98,14 @@ def guard():
             for m in namespaces:
                 if getattr(m, name, None) is f:
                     setattr(m, name, g)
+    # PendularIntegrator reads its NewtonIntegrator's parameters through Python only when they may have
+    # changed, so that the simulation thread does not take the GIL at every step (YADE's O.reset and O.load
+    # hold the GIL while they wait for the step in progress: a step waiting for it would never end). A
+    # change through these setters is noted (read again at the next step), and O.run reads them before the
+    # simulation thread starts.
+    for name in ("damping", "gravity", "dampGravity", "exactAsphericalRot", "mask"):
+        p = vars(w.NewtonIntegrator)[name]
+        setattr(w.NewtonIntegrator, name, property(p.fget, _notifying(p.fset, w.PendularIntegrator.newtonChanged), None, p.__doc__))
+    w.Omega.run = _refreshing(w.Omega.run)
     _guarded = True
     w.PendularLoop.readersGuarded()
