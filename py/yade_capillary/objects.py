@@ -59,9 +59,10 @@ def _refreshing(run):
     @functools.wraps(run)
     def call(self, *args, **kw):
         import yade.wrapper as w
-        for e in self.engines:
-            if isinstance(e, w.PendularIntegrator):
-                e.refresh()
+        if not self.running:  # a running simulation's engines are read by its own thread
+            for e in self.engines:
+                if isinstance(e, w.PendularIntegrator):
+                    e.refresh()
         return run(self, *args, **kw)
     call.__doc__ = (run.__doc__ or "") + "\n(yade-capillary: PendularIntegrator reads its NewtonIntegrator's parameters first)"
     return call
