@@ -2,6 +2,7 @@
 // prefetch, the bodies' pointers of a step and the number of OpenMP threads.
 #pragma once
 
+#include <core/Body.hpp>
 #include <core/Bound.hpp>
 #include <core/State.hpp>
 
@@ -35,6 +36,17 @@ namespace pendular {
 		std::vector<const Bound*>     bounds;
 		int                           clumps = 0, aspherical = 0, subdomains = 0;
 	};
+	// One body's entry of BodyPointers (b: nullptr for an erased body): its State and Bound, and its part
+	// of the flags (or-ed into the pass's reduction variables). subdomain: the scene's.
+	inline void readBody(const Body* b, int subdomain, State*& state, const Bound*& bound, int& clumps, int& aspherical, int& subdomains)
+	{
+		state = b ? b->state.get() : nullptr;
+		bound = b ? b->bound.get() : nullptr;
+		if (!b) return;
+		clumps |= !b->isStandalone();
+		aspherical |= b->isAspherical();
+		subdomains |= b->subdomain != subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
+	}
 	// The threads of an engine's passes: its ompThreads if set (> 0), at most OpenMP's maximum.
 	inline int passThreads(int ompThreads)
 	{

@@ -118,13 +118,7 @@ std::string PendularIntegrator::unsupported(const Parameters& p, int threads, bo
 #endif
 		for (long id = 0; id < n; ++id) {
 			if (id + prefetchAhead < n && container[id + prefetchAhead]) __builtin_prefetch(container[id + prefetchAhead].get());
-			const Body* b           = container[id].get();
-			ownPointers.states[id] = b ? b->state.get() : nullptr;
-			ownPointers.bounds[id] = b ? b->bound.get() : nullptr;
-			if (!b) continue;
-			clumps |= !b->isStandalone();
-			aspherical |= b->isAspherical();
-			subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
+			pendular::readBody(container[id].get(), scene->subdomain, ownPointers.states[id], ownPointers.bounds[id], clumps, aspherical, subdomains);
 		}
 		ownPointers.clumps     = clumps;
 		ownPointers.aspherical = aspherical;

@@ -73,7 +73,8 @@ public:
 		"step: the State and Bound pointers and the check for clumps come from the gathering of the :yref:`PendularLoop` before "
 		"it when the engines between them are only PendularCheck, RotationEngine, TranslationEngine and the NewtonIntegrator, "
 		"else from a pass of its own. Its parameters are read "
-		"from the NewtonIntegrator at every step, so that the NewtonIntegrator stays the one place to set gravity and damping. "
+		"from the NewtonIntegrator (through Python, before O.run and after any of its damping, gravity, dampGravity, "
+		"exactAsphericalRot or mask is set; see refresh), so that the NewtonIntegrator stays the one place to set gravity and damping. "
 		"Any other scene (clumps, aspherical bodies with exactAsphericalRot, a periodic cell, energy tracking, density scaling, "
 		"a mask) is handed to the NewtonIntegrator's own step (see nHandedOver). yade.mpy is not supported: it inserts its "
 		"communication engines next to NewtonIntegrator (build the engines with yade_capillary.scene.engines(integrator='newton')).",

@@ -150,14 +150,10 @@ void PendularLoop::gather(int threads)
 		Particle&   p = particles[id];
 		const auto& b = bodies[id];
 		near[id]      = Near { Vector3r::Zero(), 0 };
-		states[id]    = b ? b->state.get() : nullptr;
-		bounds[id]    = b ? b->bound.get() : nullptr;
+		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
+		pendular::readBody(b.get(), scene->subdomain, states[id], bounds[id], clumps, aspherical, subdomains);
 		if (!b) p.kind = missing;
 		else {
-			// What PendularIntegrator checks of every body (see pendular::BodyPointers).
-			clumps |= !b->isStandalone();
-			aspherical |= b->isAspherical();
-			subdomains |= b->subdomain != scene->subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
 			const State& s = *b->state;
 			p.pos          = s.pos;
 			p.vel          = s.vel;

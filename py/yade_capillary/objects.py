@@ -55,13 +55,12 @@ def _notifying(fset, changed):
     return put
 
 
-def _refreshing(run):
+def _refreshing(run, integrator):
     @functools.wraps(run)
     def call(self, *args, **kw):
-        import yade.wrapper as w
         if not self.running:  # a running simulation's engines are read by its own thread
             for e in self.engines:
-                if isinstance(e, w.PendularIntegrator):
+                if isinstance(e, integrator):
                     e.refresh()
         return run(self, *args, **kw)
     call.__doc__ = (run.__doc__ or "") + "\n(yade-capillary: PendularIntegrator reads its NewtonIntegrator's parameters first)"
@@ -107,6 +106,6 @@ def guard():
     for name in ("damping", "gravity", "dampGravity", "exactAsphericalRot", "mask"):
         p = vars(w.NewtonIntegrator)[name]
         setattr(w.NewtonIntegrator, name, property(p.fget, _notifying(p.fset, w.PendularIntegrator.newtonChanged), None, p.__doc__))
-    w.Omega.run = _refreshing(w.Omega.run)
+    w.Omega.run = _refreshing(w.Omega.run, w.PendularIntegrator)
     _guarded = True
     w.PendularLoop.readersGuarded()
