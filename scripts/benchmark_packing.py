@@ -32,9 +32,18 @@ for r in big:
 print("  records and sorting / records without sorting / neither: 1 / %.2f / %.2f"
       % (big[1]["ns_per_bridge_step"] / big[0]["ns_per_bridge_step"], big[2]["ns_per_bridge_step"] / big[0]["ns_per_bridge_step"]))
 mem = benchmark.memory()
-ours, theirs = mem["ScGeom"] + mem["PendularPhys"] + mem["slot"] + mem["record"], mem["ScGeom"] + mem["ViscElCapPhys"]
-print("(c) bytes per bridge (sizeof; plus the Interaction, %d B, and shared_ptr control blocks, the same for both laws):" % mem["Interaction"])
-print("  ours ScGeom %d + PendularPhys %d + PendularLoop's slot %d + record %d = %d B; built-in ScGeom %d + ViscElCapPhys %d = %d B; ratio %.2f" %
-      (mem["ScGeom"], mem["PendularPhys"], mem["slot"], mem["record"], ours, mem["ScGeom"], mem["ViscElCapPhys"], theirs, ours / theirs))
+theirs, objects = mem["ScGeom"] + mem["ViscElCapPhys"], mem["ScGeom"] + mem["PendularPhys"]
+fused = results[3]  # PendularLoop, frictionless, at the end of its run
+real, recorded = fused["interactions"], fused["recorded"]
+ours = (recorded * (mem["slot"] + mem["record"]) + fused["with_objects"] * objects + fused["invariants"] * mem["invariants"]
+        + (real - recorded) * (mem["slot"] + objects)) / real
+print("(c) bytes per bridge (sizeof; plus the Interaction, %d B, the same for both laws, and the shared_ptr control blocks of the objects):"
+      % mem["Interaction"])
+print("  built-in: ScGeom %d + ViscElCapPhys %d = %d B" % (mem["ScGeom"], mem["ViscElCapPhys"], theirs))
+print("  ours, PendularLoop at the end of its run: %d real interactions, %d recorded (slot %d + record %d B; %d of them with their own ScGeom %d + "
+      "PendularPhys %d B), %d sets of invariants (%d B each); %.0f B per bridge, ratio %.2f" %
+      (real, recorded, mem["slot"], mem["record"], fused["with_objects"], mem["ScGeom"], mem["PendularPhys"], fused["invariants"], mem["invariants"],
+       ours, ours / theirs))
+print("  ours, a bridge with objects (not recorded, or read by Python): %d B, ratio %.2f" % (mem["slot"] + objects, (mem["slot"] + objects) / theirs))
 print("  PendularLoop per body: gathered data %d + %d B, forces %d B per thread" % (mem["particle"], mem["near"], mem["forces"]))
 sys.exit(0)

@@ -45,6 +45,22 @@ namespace {
 		return f;
 	}
 
+	// What a recorded interaction holds instead of its own ScGeom and PendularPhys: one pair for all,
+	// never read or written by the loop (the record is the state). YADE's collider only asks whether an
+	// interaction has both (Interaction::isReal); a law that ever read them would find kn = 0 and reset
+	// the interaction (our law's check of rejected contact parameters) rather than compute with them.
+	const shared_ptr<IGeom>& placeholderGeom()
+	{
+		static const shared_ptr<IGeom> geom(new ScGeom());
+		return geom;
+	}
+	const shared_ptr<IPhys>& placeholderPhys()
+	{
+		static const shared_ptr<IPhys> phys(new PendularPhys());
+		return phys;
+	}
+	bool holdsPlaceholders(const Interaction& I) { return I.geom == placeholderGeom(); }
+
 	int threadNum()
 	{
 #ifdef YADE_OPENMP
@@ -223,9 +239,16 @@ void PendularLoop::action()
 	// Handed back before the gathering: what the objects get from the records is completed from the
 	// bodies as the records' last step saw them (store).
 	const bool recording = recordsAllowed(r);
-	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true);
+	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true, true);
 	recordScene = scene;
 	loopThread  = std::this_thread::get_id();
+	const long colliderRuns = colliderRunCount();
+	if (liveRecords() > 0
+	    && (colliderRuns != reconciledRuns || scene->interactions.get() != reconciledContainer || scene->interactions->size() != reconciledSize))
+		reconcile();
+	reconciledRuns      = colliderRuns;
+	reconciledContainer = scene->interactions.get();
+	reconciledSize      = scene->interactions->size();
 	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
 		const auto ts = Clock::now();
 		sortInteractions();
@@ -264,7 +287,6 @@ void PendularLoop::action()
 	// sorting, another scene. Behind that, the first and last entries must be the interactions of the
 	// last pass (an erasure moves the last entry into its hole, an insertion appends: erasing and
 	// inserting one keeps the size, not the last entry).
-	const long colliderRuns = colliderRunCount();
 	const bool fast = skipFar && recording && skipApart && !fullCheck && workValid && workEpoch == epochCount && workColliderRuns == colliderRuns
 	        && workContainer == scene->interactions.get() && long(workSize) == size
 	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
@@ -332,7 +354,7 @@ void PendularLoop::action()
 	nBounded      = bounded;
 	settleRecords();
 	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns);
-	stale         = !recordOf.empty();
+	stale         = liveRecords() > 0;
 	const auto t2 = Clock::now();
 	flushForces(threads);
 	gatherTime += ns(t0, t1);
@@ -380,19 +402,9 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 	}
 	const shared_ptr<Interaction>& I    = interactions[i];
 	Slot&                          slot = slots[i];
-	if (!slot.same(I)) {
-		// Another interaction than in the last step: new, or moved here by an erasure, with its record.
-		slot.record = Slot::none;
-		if (!recordOf.empty()) {
-			const auto it = recordOf.find(I.get());
-			if (it != recordOf.end()) {
-				slot.interaction = I;
-				slot.record      = it->second;
-				slot.id1         = records[it->second].id1;
-				slot.id2         = records[it->second].id2;
-			}
-		}
-	}
+	// Another interaction than in the last step: new (reconcile has given an interaction that an erasure
+	// moved here the slot of its record).
+	if (!slot.same(I)) slot.record = Slot::none;
 	if (slot.same(I)) {
 		if (slot.recorded()) {
 			Record&         rec = records[slot.record];
@@ -410,7 +422,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 				return;
 			}
 			// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-			store(rec, *I);
+			store(rec, *I); // its own objects again (made in this thread: the record is forgotten after the pass)
 			toForget[threadNum()].push_back(slot.record);
 			slot.record = Slot::none;
 		} else if (skipApart && slot.potential()) {
@@ -540,26 +552,73 @@ void PendularLoop::load(Record& rec, const shared_ptr<Interaction>& I)
 // The entry of `invariants` for the bridge and contact parameters of `phys`. PendularPhys makes its
 // bridge from its own members (Ip2, and again when loaded), so physics with the same members, bit for
 // bit, have the same bridge: they share an entry (the bridge is checked as well, cheaply).
-int PendularLoop::invariantsOf(const PendularPhys& phys)
+std::string PendularLoop::invariantsKey(const PendularPhys& phys)
 {
+	// Every attribute but those of the record (active, Fcap, normalForce, shearForce): the entry's
+	// prototype stands for the physics of all its records when their objects are made again (store).
 	const Real reals[] = { phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.R1, phys.R2, phys.gamma, phys.theta1, phys.theta2,
-		               phys.linearFmax, phys.linearKc, phys.bridge.rupture, phys.bridge.force0, phys.bridge.force_rupture };
-	const int  ints[]  = { phys.modelIndex, phys.ruptureIndex, phys.calibrateIndex, int(phys.bridge.m.index()), phys.extrapolate, phys.wet, phys.forceInContact };
+		               phys.linearFmax, phys.linearKc, phys.bridge.rupture, phys.bridge.force0, phys.bridge.force_rupture, phys.R, phys.sCrit,
+		               phys.force0, phys.eta, phys.viscousSmin, phys.Fvisc, phys.viscousShear[0], phys.viscousShear[1], phys.viscousShear[2],
+		               phys.sRupture, phys.transfer1, phys.VbMin, phys.VbMax };
+	const int  ints[]  = { phys.modelIndex, phys.ruptureIndex, phys.calibrateIndex, int(phys.bridge.m.index()), phys.extrapolate, phys.wet, phys.forceInContact,
+		               phys.film, phys.filmFormation, phys.pending, phys.viscousIndex, phys.dynamicRupture, phys.swapped, phys.transferIndex };
 	std::string key(reinterpret_cast<const char*>(reals), sizeof(reals));
 	key.append(reinterpret_cast<const char*>(ints), sizeof(ints));
-	const auto found = invariantsIndex.find(key);
-	if (found != invariantsIndex.end()) return found->second;
-	invariants.push_back(Invariants { phys.bridge, phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.wet, phys.forceInContact });
-	return invariantsIndex[key] = int(invariants.size()) - 1;
+	return key;
+}
+
+int PendularLoop::invariantsOf(const PendularPhys& phys)
+{
+	const std::string key   = invariantsKey(phys);
+	const auto        found = invariantsIndex.find(key);
+	if (found != invariantsIndex.end()) {
+		++invariants[found->second].users;
+		return found->second;
+	}
+	const Invariants entry { phys.bridge, phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.wet, phys.forceInContact,
+		                 shared_ptr<const PendularPhys>(new PendularPhys(phys)), 1 };
+	int index;
+	if (freeInvariants.empty()) {
+		index = int(invariants.size());
+		invariants.push_back(entry);
+	} else {
+		index = freeInvariants.back();
+		freeInvariants.pop_back();
+		invariants[index] = entry;
+	}
+	return invariantsIndex[key] = index;
+}
+
+void PendularLoop::release(int index)
+{
+	Invariants& entry = invariants[index];
+	if (--entry.users > 0) return;
+	invariantsIndex.erase(invariantsKey(*entry.prototype)); // a copy of the physics it was made from: the same key
+	entry.prototype.reset();
+	freeInvariants.push_back(index);
+}
+
+void PendularLoop::forget(int index)
+{
+	release(records[index].invariants);
+	recordInteractions[index].reset();
+	freeRecords.push_back(index);
 }
 
 // What a step changes: the geometry, the forces and whether the bridge exists. The contact point and
 // the radii, which the record does not keep, follow from the bodies as gathered for the record's last
 // step (the particles, not gathered again before the objects are brought up to date), by the
-// arithmetic of sphereGeometry.
-void PendularLoop::store(const Record& rec, const Interaction& I) const
+// arithmetic of sphereGeometry. An interaction that holds the placeholders gets a new ScGeom (all its
+// attributes are the record's or follow from the bodies; the axes of ScGeom::rotate are computed
+// before any use) and a copy of its invariants' prototype physics.
+bool PendularLoop::store(const Record& rec, Interaction& I) const
 {
-	if (!I.geom || !I.phys) return; // reset by the law in this step
+	if (!I.geom || !I.phys) return false; // reset by the law in this step
+	const bool make = holdsPlaceholders(I);
+	if (make) {
+		I.geom = shared_ptr<IGeom>(new ScGeom());
+		I.phys = shared_ptr<IPhys>(new PendularPhys(*invariants[rec.invariants].prototype));
+	}
 	auto& geom            = static_cast<ScGeom&>(*I.geom);
 	auto& phys            = static_cast<PendularPhys&>(*I.phys);
 	geom.normal           = rec.normal;
@@ -575,6 +634,7 @@ void PendularLoop::store(const Record& rec, const Interaction& I) const
 	phys.shearForce  = rec.shearForce;
 	phys.Fcap        = rec.Fcap;
 	phys.active      = rec.active;
+	return make;
 }
 
 namespace {
@@ -616,15 +676,13 @@ bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
 }
 
 // After the pass, in one thread: frees the records of the interactions reset or handed back to the
-// objects, and records the interactions that qualified.
+// objects, records the interactions that qualified (their objects replaced by the placeholders unless
+// something else holds them: Python) and drops the objects made since the last pass (dropObjects).
 void PendularLoop::settleRecords()
 {
 	for (auto& list : toForget) {
-		for (const int index : list) {
-			recordOf.erase(recordInteractions[index].get());
-			recordInteractions[index].reset();
-			freeRecords.push_back(index);
-		}
+		for (const int index : list)
+			forget(index);
 		list.clear();
 	}
 	const auto& interactions = *scene->interactions;
@@ -639,12 +697,59 @@ void PendularLoop::settleRecords()
 				index = freeRecords.back();
 				freeRecords.pop_back();
 			}
-			load(records[index], interactions[i]);
-			recordInteractions[index] = interactions[i];
-			slots[i].record                    = index;
-			recordOf[interactions[i].get()] = index;
+			const shared_ptr<Interaction>& I = interactions[i];
+			load(records[index], I);
+			recordInteractions[index] = I;
+			slots[i].record           = index;
+			withObjects.push_back(index);
 		}
 		list.clear();
+	}
+	dropObjects();
+}
+
+void PendularLoop::dropObjects()
+{
+	size_t kept = 0;
+	for (const int index : withObjects) {
+		const auto& I = recordInteractions[index];
+		if (!I || !I->geom || holdsPlaceholders(*I)) continue; // forgotten, reset, or listed twice
+		if (I->geom.use_count() == 1 && I->phys.use_count() == 1) {
+			I->geom = placeholderGeom();
+			I->phys = placeholderPhys();
+		} else
+			withObjects[kept++] = index; // held by Python: written by the next sync
+	}
+	withObjects.resize(kept);
+	nWithObjects = long(kept);
+	nInvariants  = long(invariants.size()) - long(freeInvariants.size());
+}
+
+// The collider erases the potential interactions whose bounding boxes parted (an erasure moves the last
+// entry of the container into the hole) and appends new ones: each recorded interaction is found at its
+// place in the container (Interaction::linIx), where its slot now is. One that is no longer in the
+// container (none should be: the collider erases only potential interactions, the Python paths that erase
+// drop the records first) goes back to its objects.
+void PendularLoop::reconcile()
+{
+	auto&       container = *scene->interactions;
+	const long  size      = long(container.size());
+	slots.resize(size_t(size));
+	for (size_t index = 0; index < records.size(); ++index) {
+		const shared_ptr<Interaction>& I = recordInteractions[index];
+		if (!I) continue;
+		const long at = I->linIx;
+		if (at >= 0 && at < size && container[at] == I) {
+			Slot& slot       = slots[at];
+			slot             = Slot {};
+			slot.interaction = I;
+			slot.id1         = records[index].id1;
+			slot.id2         = records[index].id2;
+			slot.record      = int(index);
+			continue;
+		}
+		store(records[index], *I);
+		forget(int(index));
 	}
 }
 
@@ -664,13 +769,11 @@ void PendularLoop::sortInteractions()
 	std::vector<std::pair<uint64_t, size_t>> order(n); // key, entry before the sort
 	for (size_t i = 0; i < n; ++i) {
 		const auto& I = container[i];
-		if (!slots[i].same(I)) { // new since the last pass, or moved here by an erasure with its record
+		if (!slots[i].same(I)) { // new since the last pass (reconcile has placed the records), the pass decides
 			slots[i]             = Slot {};
 			slots[i].interaction = I;
 			slots[i].id1         = I->getId1();
 			slots[i].id2         = I->getId2();
-			const auto it        = recordOf.find(I.get());
-			if (it != recordOf.end()) slots[i].record = it->second; // else the pass decides
 		}
 		order[i] = { slots[i].key(), i };
 	}
@@ -701,28 +804,31 @@ void PendularLoop::sortInteractions()
 		orderedInteractions.push_back(std::move(recordInteractions[slot.record]));
 		slot.record = int(ordered.size()) - 1;
 	}
-	// A record whose interaction is no longer in the container (none should be: the collider erases
-	// only potential interactions, Python erasures drop the records first) goes back to its objects.
-	for (auto it = recordOf.begin(); it != recordOf.end();) {
-		if (placed[it->second]) {
-			++it;
-			continue;
+	// A record whose interaction is no longer in the container (reconcile has handed them back) goes
+	// back to its objects.
+	for (size_t index = 0; index < records.size(); ++index)
+		if (!placed[index] && recordInteractions[index]) {
+			store(records[index], *recordInteractions[index]);
+			release(records[index].invariants);
 		}
-		store(records[it->second], *recordInteractions[it->second]);
-		it = recordOf.erase(it);
-	}
-	for (size_t k = 0; k < ordered.size(); ++k) // the map's nodes stay, their values change
-		recordOf.find(orderedInteractions[k].get())->second = int(k);
 	records.swap(ordered);
 	recordInteractions.swap(orderedInteractions);
 	freeRecords.clear();
+	withObjects.clear();
+	for (size_t index = 0; index < records.size(); ++index)
+		if (!holdsPlaceholders(*recordInteractions[index])) withObjects.push_back(int(index));
 }
 
-void PendularLoop::syncObjects(bool drop)
+void PendularLoop::syncObjects(bool drop, bool all)
 {
-	if (stale)
-		for (const auto& entry : recordOf)
-			store(records[entry.second], *recordInteractions[entry.second]);
+	if (all || drop) {
+		for (size_t index = 0; index < records.size(); ++index) {
+			const auto& I = recordInteractions[index];
+			if (I && (stale || holdsPlaceholders(*I)) && store(records[index], *I)) withObjects.push_back(int(index));
+		}
+	} else if (stale)
+		for (const int index : withObjects)
+			if (recordInteractions[index]) store(records[index], *recordInteractions[index]);
 	stale = false;
 	if (!drop) return;
 	workValid = false;
@@ -731,12 +837,41 @@ void PendularLoop::syncObjects(bool drop)
 	invariants.clear();
 	invariantsIndex.clear();
 	freeRecords.clear();
-	recordOf.clear();
+	freeInvariants.clear();
+	withObjects.clear();
+	nWithObjects = 0;
+	nInvariants  = 0;
 	for (auto& slot : slots)
 		if (slot.recorded()) slot.record = Slot::none;
 }
 
-void PendularLoop::syncScene(Scene* scene, bool drop)
+PendularLoop::~PendularLoop() { syncObjects(true, true); }
+
+void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
+{
+	if (!I || !I->geom || !holdsPlaceholders(*I)) return;
+	const auto& scene = Omega::instance().getScene();
+	for (const auto& e : scene->engines) {
+		auto* loop = dynamic_cast<PendularLoop*>(e.get());
+		if (!loop || loop->liveRecords() == 0) continue;
+		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread)
+			throw std::runtime_error("Interaction.geom/phys of an interaction that PendularLoop computes from its own record, while the simulation runs "
+			                         "(O.run()): its objects are made between steps; call O.pause() or O.wait() first");
+		// Its slot, unless the collider has moved it since the last pass (then a search).
+		long       index = -1;
+		const long at    = I->linIx;
+		if (at >= 0 && size_t(at) < loop->slots.size() && loop->slots[at].same(I) && loop->slots[at].recorded()) index = loop->slots[at].record;
+		for (size_t k = 0; index < 0 && k < loop->records.size(); ++k)
+			if (loop->recordInteractions[k] == I) index = long(k);
+		if (index < 0 || loop->recordInteractions[index] != I) continue;
+		if (loop->store(loop->records[index], *I)) loop->withObjects.push_back(int(index));
+		return;
+	}
+	throw std::runtime_error("Interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2())
+	                         + " holds PendularLoop's placeholders, but no PendularLoop of the current scene has its record");
+}
+
+void PendularLoop::syncScene(Scene* scene, bool drop, bool all)
 {
 	if (!scene) return;
 	for (const auto& e : scene->engines) {
@@ -745,13 +880,13 @@ void PendularLoop::syncScene(Scene* scene, bool drop)
 		// Whatever may have changed the container (drop) ends the list of entries to visit, also
 		// without records and from another thread (an atomic flag).
 		if (drop) loop->workValid = false;
-		if (loop->recordOf.empty()) continue;
+		if (loop->liveRecords() == 0) continue;
 		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) continue;
-		loop->syncObjects(drop);
+		loop->syncObjects(drop, all);
 	}
 }
 
-void PendularLoop::syncCurrent(bool drop) { syncScene(Omega::instance().getScene().get(), drop); }
+void PendularLoop::syncCurrent(bool drop, bool all) { syncScene(Omega::instance().getScene().get(), drop, all); }
 
 boost::python::dict PendularLoop::memory() const
 {
@@ -764,7 +899,7 @@ boost::python::dict PendularLoop::memory() const
 	d["near"]          = sizeof(Near);
 	d["slot"]          = sizeof(Slot);
 	d["record"]        = sizeof(Record) + sizeof(shared_ptr<Interaction>); // with its entry of recordInteractions
-	d["invariants"]    = sizeof(Invariants); // once per distinct set of bridge and contact parameters
+	d["invariants"]    = sizeof(Invariants) + sizeof(PendularPhys); // once per distinct set of bridge and contact parameters, with its prototype
 	d["forces"]        = 2 * sizeof(Vector3r);
 	return d;
 }

@@ -48,23 +48,36 @@ public:
 		Vector3r normalForce, shearForce;
 		Real     Fcap;
 	};
-	// The members of PendularPhys that a step of a record reads and does not change.
+	// The members of PendularPhys that a step of a record reads and does not change, and the whole
+	// physics they came from (every member but those of the record), from which the objects of a
+	// record are made again when something reads them (see makeObjects).
 	struct Invariants {
-		capillary::Bridge bridge;
-		Real              kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
-		bool              wet, forceInContact;
+		capillary::Bridge                   bridge;
+		Real                                kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
+		bool                                wet, forceInContact;
+		shared_ptr<const PendularPhys>      prototype;
+		long                                users = 0; // records that use it; freed at 0 (see release)
 	};
 
 	void action() override;
+	// The recorded interactions get their own ScGeom and PendularPhys back (see makeObjects).
+	~PendularLoop() override;
 	// sizeof of what an interaction and a body cost, for the memory benchmark.
 	boost::python::dict memory() const;
 	// Brings the Interaction, ScGeom and PendularPhys objects of the records of the PendularLoop
 	// engines of `scene` up to date; drop: also forget the records, so that the next step reads the
-	// objects again (after anything that may have changed them). Skipped while the simulation runs
-	// in another thread than the caller's (YADE's own objects are not safe to read then either).
-	static void syncScene(Scene* scene, bool drop);
+	// objects again (after anything that may have changed them). all: every recorded interaction gets
+	// its own ScGeom and PendularPhys (for C++ code that reads them: O.save, YADE's utils, the liquid
+	// accounts), else only those that have them are written (Python reads the attributes of objects it
+	// holds). Skipped while the simulation runs in another thread than the caller's (YADE's own objects
+	// are not safe to read then either).
+	static void syncScene(Scene* scene, bool drop, bool all = true);
 	// The same for the current scene (Python: PendularLoop.sync).
-	static void syncCurrent(bool drop);
+	static void syncCurrent(bool drop, bool all = true);
+	// The ScGeom and PendularPhys of one interaction of the current scene, made from its record if it
+	// has none of its own (Python: PendularLoop.objectsOf, called by the wrapped Interaction.geom and
+	// .phys). RuntimeError while the simulation runs in another thread.
+	static void objectsOf(const shared_ptr<Interaction>& I);
 	// Records are kept only once the Python paths that read or change the objects call sync
 	// (yade_capillary.objects.guard, run when yade_capillary.scene is imported).
 	static bool readersGuarded;
@@ -112,8 +125,20 @@ private:
 	bool recordable(const Interaction& I, const Resolved& r) const;
 	void load(Record& rec, const shared_ptr<Interaction>& I);
 	int  invariantsOf(const PendularPhys& phys);
-	void store(const Record& rec, const Interaction& I) const;
-	void syncObjects(bool drop);
+	static std::string invariantsKey(const PendularPhys& phys);
+	// A record no longer uses entry `index` of invariants (freed when none does, so that a polydisperse
+	// packing keeps only the entries of the bridges that exist).
+	void release(int index);
+	// Frees a record whose interaction is reset or has its own objects again.
+	void forget(int index);
+	// Writes the record into its interaction's objects, made first if the interaction holds the
+	// placeholders; true if they were made.
+	bool store(const Record& rec, Interaction& I) const;
+	void syncObjects(bool drop, bool all);
+	// The recorded interactions whose objects nothing but the interaction holds get the placeholders.
+	void dropObjects();
+	// After the collider has changed the container: the slot of each record's interaction (Interaction::linIx).
+	void reconcile();
 	void settleRecords();
 	bool recordsAllowed(const Resolved& r) const;
 	bool ownsStep(const Resolved& r) const;
@@ -167,16 +192,24 @@ private:
 	size_t                             workSize      = 0;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
-	// reset), their free entries, and which interaction has which (for an interaction that an erasure
-	// moved to another entry of the container). Changed only between the passes.
+	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
+	// two placeholders shared by all (so that YADE's collider sees it real) instead of its own ScGeom
+	// and PendularPhys, which are made from the record when something reads them (store) and dropped
+	// again after the next pass if nothing else holds them (dropObjects): withObjects lists the
+	// records that may have their own.
 	std::vector<Record>                            records;
 	std::vector<shared_ptr<Interaction>>           recordInteractions;
 	// The distinct invariants of the records, and where each is, by the PendularPhys members they
 	// are made from (see invariantsOf).
 	std::vector<Invariants>                        invariants;
 	std::unordered_map<std::string, int>           invariantsIndex;
-	std::vector<int>                               freeRecords;
-	std::unordered_map<const Interaction*, int>    recordOf;
+	std::vector<int>                               freeRecords, freeInvariants;
+	std::vector<int>                               withObjects;
+	// The collider's runs and the container the slots of the records were last matched to (reconcile).
+	long                                           reconciledRuns      = -1;
+	const InteractionContainer*                    reconciledContainer = nullptr;
+	size_t                                         reconciledSize      = 0;
+	long liveRecords() const { return long(records.size()) - long(freeRecords.size()); }
 	std::vector<std::vector<long>>                 toRecord;   // per thread: container entries to record after the pass
 	std::vector<std::vector<int>>                  toForget;   // per thread: records to free after the pass
 	bool                                           stale = false; // the records are newer than the objects
@@ -202,6 +235,8 @@ public:
 		((long, nApart, 0, Attr::readonly, "Of nFused, the potential interactions found apart by the distance check alone in the last step [-]."))
 		((long, nBounded, 0, Attr::readonly, "Of nApart, the potential interactions found apart by the bound on their gap alone in the last step [-], without reading the bodies (the bound: the gap at the last check minus how far the bodies can have moved since)."))
 		((long, nRecorded, 0, Attr::readonly, "Of nFused, the interactions computed from the loop's own records in the last step [-] (see keepRecords)."))
+		((long, nInvariants, 0, Attr::readonly, "Distinct sets of bridge and contact parameters that the records used after the last step [-] (one for all the bridges of a monodisperse material; an entry is freed with its last record)."))
+		((long, nWithObjects, 0, Attr::readonly, "Of nRecorded, the interactions that still had their own ScGeom and PendularPhys after the last step [-]: those held by Python (the others hold two shared placeholders, and theirs are made from the record when read, see keepRecords)."))
 		((Real, sortDisorder, 0.1, , "Fraction of the interaction container's entries out of (id1, id2) order in a step [-] above which the loop sorts YADE's interaction container by (id1, id2) before its next pass, so that consecutive interactions read nearby bodies and records (the collider appends new interactions at the end, erasures move the last entry into the hole); 0: never. Only with engines known not to depend on the container's order (as for keepRecords), without callbacks and MPI. The order of the container is the order in which the forces on a body are summed: runs with and without sorting differ by round-off."))
 		((long, nDisorder, 0, Attr::readonly, "Entries of the interaction container found after an entry with larger (id1, id2) in the last step [-] (see sortDisorder)."))
 		((long, nSorts, 0, Attr::readonly, "How many times the loop has sorted the interaction container [-] (see sortDisorder)."))
@@ -210,18 +245,20 @@ public:
 		((bool, skipFar, true, , "Between two runs of the collider, visit only the entries of the interaction container that a step may have to compute: the potential pairs whose bound on the gap (see nBounded) exceeds what the bodies can move before the bound is renewed are left out of a list of entries made after each full pass, so that the pass no longer reads their container entries and slots at every step. Same results bit for bit on one thread (the entries are visited in the container's order; on several threads the entries are shared out differently, so the force sums differ by round-off; nFused, nApart and nBounded count the skipped ones as before); only with records (keepRecords), and the list is dropped by anything that may change the container (the collider, sorting, the wrapped Python paths). False: every entry at every step."))
 		((long, nSkipped, 0, Attr::readonly, "Of nBounded, the entries of the interaction container not visited at all in the last step [-] (see skipFar)."))
 		((long, nFastPasses, 0, Attr::readonly, "Steps in which the pass visited only its list of entries [-] (see skipFar)."))
-		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps (the objects I.geom and I.phys are written when read: from Python, by O.save, by YADE's utils functions); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PendularIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))
+		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps; their interactions hold two placeholders shared by all instead of their own ScGeom and PendularPhys, which are made from the record when read (from Python, by O.save, by YADE's utils functions) and dropped after the next step unless Python still holds them (176 B per recorded bridge instead of 816); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PendularIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))
 		((long, parallelBodies, 1000, , "From this many bodies on, the per-body phases (gathering the bodies, zeroing the force arrays, handing the forces over) run on ompThreads threads, below it on one [-]: a parallel region costs more than a short pass (./run.sh bench compares 1000, the default, with 20000, the earlier one, on the ci cell: on two threads its 2 200 bodies gain 8-11 %)."))
 		((Real, gatherTime, 0, , "Wall time spent gathering the bodies' positions and velocities since this was last set to 0 [ns]."))
 		((Real, passTime, 0, , "Wall time spent in the pass over the interactions since this was last set to 0 [ns]."))
 		((Real, flushTime, 0, , "Wall time spent handing the summed forces to the force container since this was last set to 0 [ns].")),
 		/*ctor*/,
 		/*py*/
-		.def("sync", &PendularLoop::syncCurrent, (boost::python::arg("drop") = false), "Write the loop's records into the Interaction, ScGeom and PendularPhys objects of the current scene (drop: and read the objects again at the next step). Called by the wrapped Python paths that read or change them (attributes of the geometry and physics, O.save, yade.utils functions); not needed in user code.")
+		.def("sync", &PendularLoop::syncCurrent, (boost::python::arg("drop") = false, boost::python::arg("all") = true), "Write the loop's records into the Interaction, ScGeom and PendularPhys objects of the current scene (drop: and read the objects again at the next step; all: make the objects of every recorded interaction first, else write only those that exist). Called by the wrapped Python paths that read or change them (attributes of the geometry and physics, O.save, yade.utils functions); not needed in user code.")
 		.staticmethod("sync")
+		.def("objectsOf", &PendularLoop::objectsOf, (boost::python::arg("interaction")), "Make the ScGeom and PendularPhys of a recorded interaction of the current scene from its record, if it holds the placeholders. Called by the wrapped Interaction.geom and Interaction.phys; not needed in user code.")
+		.staticmethod("objectsOf")
 		.def("readersGuarded", &PendularLoop::guardReaders, "Declare that the Python paths that read or change interactions call sync (yade_capillary.objects.guard does it); before, no records are kept.")
 		.staticmethod("readersGuarded")
-		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; invariants: once per distinct set of bridge and contact parameters) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
+		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; a recorded interaction has no ScGeom and PendularPhys of its own unless they are read; invariants: once per distinct set of bridge and contact parameters, with its prototype physics, PendularPhys) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
 	);
 	// clang-format on
 };

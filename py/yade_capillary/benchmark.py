@@ -74,6 +74,9 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, rec
            "particle_steps_per_s": len(O.bodies) * steps / wall, "wall_s": wall}
     if phases:
         out.update({k: getattr(O.engines[2], k + "Time") / intr_steps for k in ("gather", "pass", "flush")})
+        # What the memory of (c) is made of: recorded interactions, those of them with objects of their
+        # own, and the sets of invariants (see PendularLoop.keepRecords).
+        out.update(recorded=O.engines[2].nRecorded, with_objects=O.engines[2].nWithObjects, invariants=O.engines[2].nInvariants)
     return out
 
 

@@ -2,14 +2,19 @@
 (import inside yade only).
 
 Between steps PendularLoop keeps the state of sphere-sphere interactions without film or viscosity
-in a contiguous array of its own (PendularLoop.keepRecords) and writes it into the Interaction,
-ScGeom and PendularPhys objects only when something may read them. guard() wraps every Python path
-that reads or changes those objects so that it calls PendularLoop.sync first:
+in a contiguous array of its own (PendularLoop.keepRecords); such an interaction holds two placeholders
+shared by all instead of its own ScGeom and PendularPhys, which are made from the record when something
+reads them and dropped after the next step unless Python still holds them. guard() wraps every Python
+path that reads or changes those objects so that it calls PendularLoop first:
 
-* the attributes of the geometry and physics classes (reading: sync; assigning: sync and drop, so
-  that the loop reads the changed objects at its next step), Interaction.geom, .phys and .isActive
-  (assigning), Serializable.dict;
-* O.save and O.saveTmp, Law2_ScGeom_PendularPhys_Bridge.liquidTotals (reading);
+* Interaction.geom and .phys (reading: PendularLoop.objectsOf, the interaction's own objects, made from
+  its record if needed);
+* the attributes of the geometry and physics classes (reading: sync of the objects that exist; assigning:
+  sync and drop, so that the loop reads the changed objects at its next step), Interaction.geom, .phys and
+  .isActive (assigning), Omega.engines and Engine.dead (assigning: the objects are made and the records
+  dropped, since another loop may read the objects);
+* Serializable.dict, O.save and O.saveTmp, Law2_ScGeom_PendularPhys_Bridge.liquidTotals (reading: sync,
+  every recorded interaction's objects made);
 * NewtonIntegrator's damping, gravity, dampGravity, exactAsphericalRot and mask (assigning: noted for
   PendularIntegrator) and O.run (PendularIntegrator.refresh first), so that the simulation thread does
   not take the GIL at every step;
@@ -27,7 +32,14 @@ _guarded = False
 
 def _reading(fget, sync):
     def get(self):
-        sync(False)
+        sync(False, False)  # the objects that exist; Python holds no other
+        return fget(self)
+    return get
+
+
+def _making(fget, objects_of):
+    def get(self):
+        objects_of(self)
         return fget(self)
     return get
 
@@ -83,7 +95,11 @@ def guard():
                 setattr(cls, name, property(_reading(p.fget, sync) if p.fget else None, _writing(p.fset, sync) if p.fset else None, None, p.__doc__))
     for name in ("geom", "phys", "isActive"):
         p = vars(w.Interaction)[name]
-        setattr(w.Interaction, name, property(p.fget, _writing(p.fset, sync) if p.fset else None, None, p.__doc__))
+        fget = _making(p.fget, w.PendularLoop.objectsOf) if name in ("geom", "phys") else p.fget
+        setattr(w.Interaction, name, property(fget, _writing(p.fset, sync) if p.fset else None, None, p.__doc__))
+    for cls, name in ((w.Omega, "engines"), (w.Engine, "dead")):
+        p = vars(cls)[name]
+        setattr(cls, name, property(p.fget, _writing(p.fset, sync), None, p.__doc__))
     w.Serializable.dict = _calling(w.Serializable.dict, sync, False)
     for name in ("save", "saveTmp"):
         setattr(w.Omega, name, _calling(getattr(w.Omega, name), sync, False))

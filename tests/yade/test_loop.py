@@ -126,9 +126,31 @@ def run(loop, box, friction, threads, snapshots=False, records=True, sort=0.0, s
     O.run(STEPS, True)
     law = stress.capillary_law()
     state = [(tuple(b.state.pos), tuple(b.state.vel), tuple(b.state.angVel)) for b in O.bodies if b is not None and b.dynamic]
+    if loop == "fused":
+        # Read before anything below makes the recorded interactions' objects (see keepRecords).
+        engine_counts.update(recorded=engine.nRecorded, with_objects=engine.nWithObjects, invariants=engine.nInvariants)
     fn = {(i.id1, i.id2): (i.isReal, i.iterMadeReal, type(i.phys).__name__, tuple(i.phys.normalForce) if i.isReal else None)
           for i in O.interactions.all(False)}
     return state, (law.nBridges, law.liquidVolume, law.liquidFormed, law.liquidReleased), fn, engine, list(SNAPSHOTS) if snapshots else None
+
+
+engine_counts = {}
+
+
+def every_attribute():
+    """Every attribute of the ScGeom and PendularPhys of each real sphere-sphere PendularPhys interaction
+    (Serializable.dict; repr, so that NaN compares), shearInc of separated pairs left out (see
+    without_separated_shear_inc). With records, these objects are made from the records and their
+    invariants' prototype physics (PendularLoop.keepRecords)."""
+    rows = {}
+    for i in O.interactions:
+        if type(i.phys).__name__ != "PendularPhys" or type(i.geom).__name__ != "ScGeom":
+            continue
+        g = i.geom.dict()
+        if g["penetrationDepth"] < 0:
+            del g["shearInc"]
+        rows[(i.id1, i.id2)] = repr(sorted(g.items())) + repr(sorted(i.phys.dict().items()))
+    return rows
 
 
 def container_consistent():
@@ -166,6 +188,7 @@ for box in ("walls", "facets"):
         ck.true(ref_totals[2] > ref_totals[1] > 0, "%s: bridges formed %g and broken, liquid now %g m^3" % (tag, ref_totals[2], ref_totals[1]))
         if not parallel:
             one, one_totals, one_fn, loop, snaps = run("fused", box, friction, 1, snapshots=True)
+            one_attributes, one_counts = every_attribute(), dict(engine_counts)
             ck.true(loop.nFused > 0 and loop.nDispatched > 0, "%s: the fused pass (%d) and the dispatchers (%d, walls/facets) were both used"
                     % (tag, loop.nFused, loop.nDispatched))
             ck.true(loop.nRecorded > 0, "%s: %d interactions computed from PendularLoop's records in the last step" % (tag, loop.nRecorded))
@@ -181,11 +204,20 @@ for box in ("walls", "facets"):
             # Interactions erased and made from a PyRunner with the bare createInteraction of __main__.
             made, made_totals, _, made_loop, _ = run("fused", box, friction, 1, recreate=True)
             made_pairs = list(RECREATED)
+            # Without Python holding any, no recorded interaction has objects of its own after a step; the
+            # parameters of the bridges that broke are freed (a polydisperse packing: one set per pair of radii).
+            ck.true(engine_counts["recorded"] > 0 and engine_counts["with_objects"] == 0 and 0 < engine_counts["invariants"] <= engine_counts["recorded"],
+                    "%s: %d recorded interactions, %d of them with their own ScGeom and PendularPhys (the others hold the placeholders), "
+                    "%d sets of invariants in use" % (tag, engine_counts["recorded"], engine_counts["with_objects"], engine_counts["invariants"]))
             full, full_totals, _, _, _ = run("fused", box, friction, 1, recreate=True, skip_far=False)
             ck.true(len(made_pairs) >= 10 and made_pairs == RECREATED and made_loop.nFastPasses > 0 and made == full and made_totals == full_totals,
                     "%s: %d far pairs made real from a PyRunner (createInteraction of __main__), %d steps on the list: positions, velocities "
                     "and totals bit-identical to the run without the list (skipFar=False)" % (tag, len(made_pairs), made_loop.nFastPasses))
             plain, plain_totals, _, _, plain_snaps = run("fused", box, friction, 1, snapshots=True, records=False)
+            plain_attributes = every_attribute()
+            ck.true(one_attributes == plain_attributes and len(one_attributes) > 0,
+                    "%s: every attribute of the %d sphere-sphere ScGeom and PendularPhys after the run, made from the records, equal to "
+                    "those of the run without records" % (tag, len(one_attributes)))
             ck.true(snaps == plain_snaps and one == plain and one_totals == plain_totals,
                     "%s: with and without PendularLoop's records, the snapshots read inside the run, positions, velocities and totals are "
                     "bit-identical" % tag)
