@@ -525,6 +525,16 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 			return true;
 		}
 	phys.normalForce = (fn - phys.Fcap) * geom.normal;
+	bool twoSpheres = true; // a record is always a sphere-sphere pair
+	if constexpr (full) twoSpheres = !phys.swapped && math::isfinite(phys.R2);
+	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0)) {
+		// Frictionless between two spheres: a central force, which has no moment about either centre
+		// (the cross products with the arms along the normal give only round-off, which spins the
+		// spheres and makes every step rotate them). A wall or facet keeps the moment of the force at
+		// the contact point about its own position.
+		sink.force(phys.normalForce);
+		return true;
+	}
 	const Vector3r f = phys.normalForce + shear + shearVisc;
 	sink.forceTorque(f, -c1x.cross(f), c2x.cross(f));
 	return true;

@@ -128,4 +128,34 @@ place(c, b2, 1.01 * O.interactions[b1, b2].phys.sCrit)
 ck.true(capillaryLaw.nBridges == 0 and capillaryLaw.liquidVolume == 0, "rupture after O.load: no bridge, no liquid in bridges")
 ck.close(capillaryLaw.liquidReleased, capillaryLaw.liquidFormed, 1e-15, "liquid released = formed after O.load", "liquid balance")
 
+# 5. Frictionless contacts between spheres exert a central force: no moment about either centre, in both
+#    loops (the arms lie along the normal; computed, their cross products with the force gave round-off
+#    moments that spun frictionless spheres). A facet keeps the moment of the force at the contact point
+#    about its own position, (contactPoint - position) x force.
+from yade_capillary import scene  # noqa: E402
+
+for loop in ("standard", "fused"):
+    O.reset()
+    O.dt = 1e-6
+    mat = O.materials.append(PendularMat(tc=2e-5, en=0.8, et=0.8, density=2500, frictionAngle=0, wet=True, Vb=V, gamma=g, theta=t, model="willett_full"))
+    direction = (0.3713, -0.5521, 0.7466)
+    norm = math.sqrt(sum(x * x for x in direction))
+    b1 = O.bodies.append(sphere((0.1 * R, 0.2 * R, -0.3 * R), R, material=mat, fixed=True))
+    b2 = O.bodies.append(sphere(tuple(p + (1.93 * R) * x / norm for p, x in zip((0.1 * R, 0.2 * R, -0.3 * R), direction)), 0.95 * R, material=mat,
+                                fixed=True))
+    f = O.bodies.append(facet([(3 * R, -5 * R, -5 * R), (3 * R, 5 * R, -5 * R), (3 * R, 0, 5 * R)], material=mat))
+    s3 = O.bodies.append(sphere((3 * R + 0.999 * R, 1.7 * R, -0.9 * R), R, material=mat, fixed=True))
+    O.engines = scene.engines(loop=scene.interaction_loop(loop))
+    O.step()
+    O.step()
+    F = O.forces.f(b2)
+    ck.true(F.norm() > 0 and O.forces.t(b1).norm() == 0 and O.forces.t(b2).norm() == 0,
+            "%s loop: frictionless sphere-sphere contact, force %.3g N, moments on both spheres exactly 0 (central force)" % (loop, F.norm()))
+    I = O.interactions[f, s3]
+    arm = I.geom.contactPoint - O.bodies[f].state.pos
+    expected = arm.cross(O.forces.f(f))
+    ck.true(O.forces.f(f).norm() > 0 and O.forces.t(s3).norm() == 0, "%s loop: sphere on a facet, moment on the sphere exactly 0" % loop)
+    ck.close((O.forces.t(f) - expected).norm(), 0.0, 0, "%s loop: moment on the facet" % loop, "(contactPoint - position) x force",
+             atol=1e-12 * expected.norm())
+
 ck.finish()
