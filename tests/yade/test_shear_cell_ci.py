@@ -1,7 +1,10 @@
 # CI regression of the split-bottom shear cell (ci configuration, seed 1, every liquid case):
 # mu, c, Rc and the torque against the references of scripts/shear_cell_reference.py within 4
-# seed-to-seed standard deviations, and the expected physics (Gladkyy 2014 section 4.2): dry
-# cohesion consistent with zero, cohesion growing with the liquid volume, band centre moving
+# seed-to-seed standard deviations, and the expected physics (Gladkyy 2014 section 4.2): no dry
+# cohesion (the intercept of the dry fit is not above zero by more than 3 standard deviations; it is
+# biased below zero by the curvature of tau(p) near the free surface: -0.04 to -0.14 Pa over the five
+# reference seeds, so "consistent with zero" both ways would fail for seed 4 and did for a run that
+# differed from seed 1 by round-off), cohesion growing with the liquid volume, band centre moving
 # inwards, and each liquid content told apart from dry: the torque on the rotating walls (which
 # rises with the liquid content, Gladkyy Fig. 8) differs from the dry one by at least 3 standard
 # errors, the standard error of one run being its seed-to-seed scatter.
@@ -35,7 +38,7 @@ for case in shearcell.CASES:
         ck.close(v, r["mean"], 0, "%s %s" % (case, k), "seed scatter of %s (%s)" % (ref["command"], r["values"]), atol=4 * r["std"])
 
 dry_c_sigma = max(ref["cases"]["dry"]["c_Pa"]["std"], fitted["dry"]["c_err_Pa"])
-ck.true(abs(got["dry"]["c_Pa"]) <= 3 * dry_c_sigma, "dry c = %.3f Pa consistent with 0 (3 sigma = %.3f Pa)" % (got["dry"]["c_Pa"], 3 * dry_c_sigma))
+ck.true(got["dry"]["c_Pa"] <= 3 * dry_c_sigma, "dry c = %.3f Pa: no cohesion (not above 0 by more than 3 sigma = %.3f Pa)" % (got["dry"]["c_Pa"], 3 * dry_c_sigma))
 ck.true(got["wet74.2nl"]["c_Pa"] > got["dry"]["c_Pa"], "c(74.2 nl) > c(dry)")
 ck.true(got["wet74.2nl"]["c_Pa"] > got["wet13.6nl"]["c_Pa"], "c(74.2 nl) > c(13.6 nl)")
 for case in ("wet13.6nl", "wet74.2nl"):
