@@ -715,8 +715,9 @@ void PendularLoop::dropObjects()
 		const auto& I = recordInteractions[index];
 		if (!I || !I->geom || holdsPlaceholders(*I)) continue; // forgotten, reset, or listed twice
 		if (I->geom.use_count() == 1 && I->phys.use_count() == 1) {
-			I->geom = placeholderGeom();
-			I->phys = placeholderPhys();
+			I->geom      = placeholderGeom();
+			I->phys      = placeholderPhys();
+			placeholders = true;
 		} else
 			withObjects[kept++] = index; // held by Python: written by the next sync
 	}
@@ -821,12 +822,13 @@ void PendularLoop::sortInteractions()
 
 void PendularLoop::syncObjects(bool drop, bool all)
 {
-	if (all || drop) {
+	if ((all || drop) && (stale || placeholders)) { // else nothing to write (a loop of Python calls asks at every call)
 		for (size_t index = 0; index < records.size(); ++index) {
 			const auto& I = recordInteractions[index];
 			if (I && (stale || holdsPlaceholders(*I)) && store(records[index], *I)) withObjects.push_back(int(index));
 		}
-	} else if (stale)
+		placeholders = false;
+	} else if (!(all || drop) && stale)
 		for (const int index : withObjects)
 			if (recordInteractions[index]) store(records[index], *recordInteractions[index]);
 	stale = false;

@@ -213,6 +213,7 @@ private:
 	std::vector<std::vector<long>>                 toRecord;   // per thread: container entries to record after the pass
 	std::vector<std::vector<int>>                  toForget;   // per thread: records to free after the pass
 	bool                                           stale = false; // the records are newer than the objects
+	bool                                           placeholders = false; // some recorded interaction may hold the placeholders
 	Scene*                                         recordScene = nullptr;
 	std::thread::id                                loopThread;
 	Matrix3r                           cellHsize = Matrix3r::Zero();
