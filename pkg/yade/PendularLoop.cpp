@@ -130,6 +130,11 @@ void PendularLoop::gather(int threads)
 	const size_t n      = bodies.size();
 	particles.resize(n);
 	near.resize(n);
+	for (auto& f : threadForce)
+		f.resize(n);
+	for (auto& t : threadTorque)
+		t.resize(n);
+	const size_t forceArrays = threadForce.size();
 	bodyPointers.scene = nullptr; // valid once the pass is complete
 	bodyPointers.states.resize(n);
 	bodyPointers.bounds.resize(n);
@@ -162,6 +167,10 @@ void PendularLoop::gather(int threads)
 			prefetchObject(ahead.state.get());
 			__builtin_prefetch(ahead.shape.get());
 			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
+		}
+		for (size_t t = 0; t < forceArrays; ++t) { // in the same pass: one sweep over the bodies fewer
+			threadForce[t][id]  = Vector3r::Zero();
+			threadTorque[t][id] = Vector3r::Zero();
 		}
 		Particle&   p = particles[id];
 		const auto& b = bodies[id];
@@ -256,16 +265,9 @@ void PendularLoop::action()
 		sortTime += ns(ts, Clock::now());
 	}
 	sortPending = false;
-	gather(threads);
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
-#ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies)
-#endif
-	for (int t = 0; t < threads; ++t) { // each thread zeroes its own arrays
-		threadForce[t].assign(particles.size(), Vector3r::Zero());
-		threadTorque[t].assign(particles.size(), Vector3r::Zero());
-	}
+	gather(threads); // also zeroes the force arrays
 	const auto t1 = Clock::now();
 
 	// As InteractionLoop: with a collider that does not erase interactions itself, the potential

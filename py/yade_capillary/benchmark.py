@@ -275,6 +275,6 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     if fused is not None and done[(False, False)] and done[(True, False)]:
         out["s_per_step_without_records"] = wall[(False, False)] / done[(False, False)]
         out["s_per_step_without_skip"] = wall[(True, False)] / done[(True, False)]
-        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nApart", "nBounded", "nSkipped", "nDispatched", "nDisorder", "nSorts")}
+        out["counts"] = {k: getattr(fused, k) for k in ("nFused", "nRecorded", "nWithObjects", "nInvariants", "nApart", "nBounded", "nSkipped", "nDispatched", "nDisorder", "nSorts")}
         out["sort_ms_per_step"] = fused.sortTime / 1e6 / (steps + 100)
     return out
