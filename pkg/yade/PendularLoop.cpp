@@ -409,10 +409,13 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 	if (!slot.same(I)) slot.record = Slot::none;
 	if (slot.same(I)) {
 		if (slot.recorded()) {
-			Record&         rec = records[slot.record];
-			const Particle& p1  = particles[slot.id1]; // the record's bodies
-			const Particle& p2  = particles[slot.id2];
-			if (p1.kind == pendularSphere && p2.kind == pendularSphere && p1.subdomain == scene->subdomain && p2.subdomain == scene->subdomain) {
+			Record& rec = records[slot.record];
+			// The record's bodies (the body container may have shrunk: O.bodies.replace).
+			const bool      exist = size_t(math::max(slot.id1, slot.id2)) < particles.size();
+			const Particle* p1    = exist ? &particles[slot.id1] : nullptr;
+			const Particle* p2    = exist ? &particles[slot.id2] : nullptr;
+			if (exist && p1->kind == pendularSphere && p2->kind == pendularSphere && p1->subdomain == scene->subdomain
+			    && p2->subdomain == scene->subdomain) {
 				++c.fused;
 				++c.recorded;
 				if (!recordStep(rec, r, threadNum())) {
@@ -518,9 +521,12 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	if (ranks > 1) return false;
 	static const std::set<std::string> known { "ForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck", "NewtonIntegrator",
 		                                   "PendularIntegrator", "PyRunner", "RotationEngine" };
-	for (const auto& e : scene->engines)
+	int loops = 0; // another PendularLoop would take the placeholders of this one's records for objects
+	for (const auto& e : scene->engines) {
 		if (e && !known.count(e->getClassName())) return false;
-	return true;
+		loops += e && dynamic_cast<const PendularLoop*>(e.get());
+	}
+	return loops == 1;
 }
 
 // A real sphere-sphere interaction of the fused pass whose state fits a Record: a fixed-volume
@@ -631,6 +637,9 @@ bool PendularLoop::store(const Record& rec, Interaction& I) const
 		geom.contactPoint  = p1.pos + (p1.radius - 0.5 * rec.penetrationDepth) * rec.normal;
 		geom.radius1       = p1.radius;
 		geom.radius2       = particles[rec.id2].radius;
+	} else if (make) { // a body that is gone: nothing to complete the new object from
+		geom.contactPoint = Vector3r::Constant(NaN);
+		geom.radius1 = geom.radius2 = NaN;
 	}
 	phys.normalForce = rec.normalForce;
 	phys.shearForce  = rec.shearForce;
@@ -716,7 +725,11 @@ void PendularLoop::dropObjects()
 	for (const int index : withObjects) {
 		const auto& I = recordInteractions[index];
 		if (!I || !I->geom || holdsPlaceholders(*I)) continue; // forgotten, reset, or listed twice
-		if (I->geom.use_count() == 1 && I->phys.use_count() == 1) {
+		// An object that Python assigned has a control block of its own, which holds the Python object
+		// (boost::python's deleter): Python may hold it though the count is 1.
+		const bool fromPython = boost::get_deleter<boost::python::converter::shared_ptr_deleter>(I->geom)
+		        || boost::get_deleter<boost::python::converter::shared_ptr_deleter>(I->phys);
+		if (!fromPython && I->geom.use_count() == 1 && I->phys.use_count() == 1) {
 			I->geom      = placeholderGeom();
 			I->phys      = placeholderPhys();
 			placeholders = true;
@@ -853,14 +866,16 @@ PendularLoop::~PendularLoop() { syncObjects(true, true); }
 
 void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
 {
-	if (!I || !I->geom || !holdsPlaceholders(*I)) return;
+	if (!I) return;
 	const auto& scene = Omega::instance().getScene();
 	for (const auto& e : scene->engines) {
 		auto* loop = dynamic_cast<PendularLoop*>(e.get());
 		if (!loop || loop->liveRecords() == 0) continue;
+		// While it runs, the loop makes and drops the objects of its records (also those of this one).
 		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread)
-			throw std::runtime_error("Interaction.geom/phys of an interaction that PendularLoop computes from its own record, while the simulation runs "
-			                         "(O.run()): its objects are made between steps; call O.pause() or O.wait() first");
+			throw std::runtime_error("Interaction.geom/phys while the simulation runs (O.run()): PendularLoop makes the objects of the "
+			                         "interactions it computes from its own records between steps; call O.pause() or O.wait() first");
+		if (!I->geom || !holdsPlaceholders(*I)) return;
 		// Its slot, unless the collider has moved it since the last pass (then a search).
 		long       index = -1;
 		const long at    = I->linIx;
@@ -871,6 +886,7 @@ void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
 		if (loop->store(loop->records[index], *I)) loop->withObjects.push_back(int(index));
 		return;
 	}
+	if (!I->geom || !holdsPlaceholders(*I)) return; // no records: its own objects
 	throw std::runtime_error("Interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2())
 	                         + " holds PendularLoop's placeholders, but no PendularLoop of the current scene has its record");
 }
@@ -885,7 +901,13 @@ void PendularLoop::syncScene(Scene* scene, bool drop, bool all)
 		// without records and from another thread (an atomic flag).
 		if (drop) loop->workValid = false;
 		if (loop->liveRecords() == 0) continue;
-		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) continue;
+		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) {
+			// The objects that Python holds keep their last values; nothing may make or write them now.
+			if (drop || all)
+				throw std::runtime_error("this reads or changes the interactions while the simulation runs (O.run()): PendularLoop writes its "
+				                         "records into them between steps; call O.pause() or O.wait() first");
+			continue;
+		}
 		loop->syncObjects(drop, all);
 	}
 }

@@ -5,6 +5,7 @@
 #include "Pendular.hpp"
 #include <core/InteractionLoop.hpp>
 
+#include <boost/python/converter/shared_ptr_deleter.hpp>
 #include <boost/weak_ptr.hpp>
 #include <atomic>
 #include <cstdint>

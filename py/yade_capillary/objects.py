@@ -13,8 +13,10 @@ path that reads or changes those objects so that it calls PendularLoop first:
   sync and drop, so that the loop reads the changed objects at its next step), Interaction.geom, .phys and
   .isActive (assigning), Omega.engines and Engine.dead (assigning: the objects are made and the records
   dropped, since another loop may read the objects);
-* Serializable.dict, O.save and O.saveTmp, Law2_ScGeom_PendularPhys_Bridge.liquidTotals (reading: sync,
-  every recorded interaction's objects made);
+* Serializable.dict and pickling, O.save, O.saveTmp and O.sceneToString, Law2_ScGeom_PendularPhys_Bridge.liquidTotals
+  (reading: sync, every recorded interaction's objects made), O.bodies.replace (sync and drop);
+* while the simulation runs in another thread, all of these but the attributes of objects already held raise
+  RuntimeError (the loop makes and drops the objects between steps);
 * NewtonIntegrator's damping, gravity, dampGravity, exactAsphericalRot and mask (assigning: noted for
   PendularIntegrator) and O.run (PendularIntegrator.refresh first), so that the simulation thread does
   not take the GIL at every step;
@@ -101,8 +103,10 @@ def guard():
         p = vars(cls)[name]
         setattr(cls, name, property(p.fget, _writing(p.fset, sync), None, p.__doc__))
     w.Serializable.dict = _calling(w.Serializable.dict, sync, False)
-    for name in ("save", "saveTmp"):
+    w.Serializable.__getstate__ = _calling(w.Serializable.__getstate__, sync, False)  # pickling
+    for name in ("save", "saveTmp", "sceneToString"):
         setattr(w.Omega, name, _calling(getattr(w.Omega, name), sync, False))
+    w.BodyContainer.replace = _calling(w.BodyContainer.replace, sync, True)
     w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals = _calling(w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals, sync, False)
     # yade's launcher has already run `from yade.utils import *` in __main__, where scripts and PyRunner
     # commands run: their bare names (createInteraction, getStress, ...) are rebound there as well.

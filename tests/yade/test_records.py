@@ -1,0 +1,106 @@
+# PendularLoop's records and the objects made from them (PendularLoop.keepRecords): a recorded
+# interaction holds two placeholders shared by all instead of its own ScGeom and PendularPhys, which are
+# made from the record when read and dropped after the next step unless something else holds them.
+# Expected values: the same scene run with keepRecords=False, where every interaction keeps its own
+# objects (the loop is bit-identical with and without records on one thread: test_loop).
+# - An object that Python holds, or that Python assigned (its control block holds the Python object,
+#   so its count is 1), stays the interaction's own and is kept current: it is never dropped for the
+#   placeholders (dropping a Python-assigned one released the Python object without the GIL and left
+#   Python holding a detached copy).
+# - While O.run() runs in the background, reading I.geom and O.save raise RuntimeError naming
+#   O.pause()/O.wait() (the loop makes and drops the objects between steps: a save then wrote the shared
+#   placeholders into the file); after O.pause() both work, and the saved scene loads with the bodies,
+#   the real interactions, the bridges and the forces of the original, each interaction with objects of
+#   its own (continuing it is test_save_continue's).
+# - Two PendularLoops in O.engines keep no records (the second would take the first one's placeholders
+#   for objects of its own).
+import os
+import tempfile
+import time
+
+from yade import O
+from yade.wrapper import InteractionLoop, PendularPhys
+
+from yade_capillary import scene, stress
+from yade_capillary.testing import Checker
+
+ck = Checker("test_records")
+
+
+def build(records=True):
+    stress.box_packing(150, "willett_full", rmin=0.5e-3, ratio=1.5, box="walls", porosity=0.7, speed=0.1, friction=0.3)
+    O.engines = scene.engines(gravity=(0, 0, -9.81))
+    O.dt = scene.stable_dt(0.1)
+    loop = next(e for e in O.engines if isinstance(e, InteractionLoop))
+    loop.keepRecords = records
+    return loop
+
+
+def sphere_pairs():
+    return sorted((i.id1, i.id2) for i in O.interactions if i.isReal and type(i.phys).__name__ == "PendularPhys"
+                  and O.bodies[i.id1].shape.__class__.__name__ == "Sphere" and O.bodies[i.id2].shape.__class__.__name__ == "Sphere")
+
+
+def state():
+    return [tuple(b.state.pos) + tuple(b.state.vel) for b in O.bodies if b.dynamic]
+
+
+# 1. Held and assigned objects stay the interaction's own and current.
+results = {}
+for records in (False, True):
+    loop = build(records)
+    O.run(300, True)
+    pairs = sphere_pairs()
+    held, assigned = pairs[0], pairs[-1]
+    phys = O.interactions[held].phys  # held by Python
+    copy = PendularPhys()
+    copy.updateAttrs(O.interactions[assigned].phys.dict())
+    O.interactions[assigned].phys = copy  # assigned from Python, then dropped by the Python name below
+    del copy
+    O.run(300, True)
+    I = O.interactions[assigned]
+    results[records] = (state(), tuple(phys.normalForce), phys.Fcap, tuple(I.phys.normalForce) if I.isReal else None,
+                        loop.nRecorded, loop.nWithObjects)
+    del phys, I
+ck.true(results[True][4] > 0 and results[True][5] >= 1,
+        "with records: %d recorded interactions, %d with objects of their own after the run (a held object and an assigned one)"
+        % (results[True][4], results[True][5]))
+ck.true(results[True][:4] == results[False][:4],
+        "a held PendularPhys and one assigned from Python: their values after 300 more steps and the positions and velocities "
+        "bit-identical to the run without records")
+
+# 2. While the simulation runs in the background.
+build()
+O.run(200, True)
+pair = sphere_pairs()[0]
+path = os.path.join(tempfile.mkdtemp(), "records.yade.gz")
+I = O.interactions[pair]
+O.run()
+time.sleep(0.2)
+ck.raises(RuntimeError, lambda: I.geom, "O.pause", "Interaction.geom while O.run() runs")
+ck.raises(RuntimeError, lambda: O.save(path), "O.pause", "O.save while O.run() runs")
+O.pause()
+O.wait()
+time.sleep(0.2)  # the last step ends (see test_gil)
+del I
+saved = (state(), {(i.id1, i.id2): (tuple(i.phys.normalForce), getattr(i.phys, "active", None)) for i in O.interactions if i.isReal})
+O.save(path)
+O.load(path)
+loaded = (state(), {(i.id1, i.id2): (tuple(i.phys.normalForce), getattr(i.phys, "active", None)) for i in O.interactions if i.isReal})
+ck.true(loaded == saved and len(saved[1]) > 0, "saved after O.pause(): O.load gives the %d bodies' positions and velocities and the %d real "
+        "interactions with their forces and bridges" % (len(saved[0]), len(saved[1])))
+ptrs = {i.phys.dict()["kn"] for i in O.interactions if i.isReal and type(i.phys).__name__ == "PendularPhys"}
+ck.true(0 not in ptrs and len(ptrs) > 0, "loaded: no interaction with the placeholder physics (kn = 0); kn of the real ones %s" % sorted(ptrs)[:3])
+O.run(100, True)
+ck.true(next(e for e in O.engines if isinstance(e, InteractionLoop)).nRecorded > 0, "the loaded scene runs on, with records")
+
+# 3. Two PendularLoops: no records.
+build()
+loop = next(e for e in O.engines if isinstance(e, InteractionLoop))
+second = scene.interaction_loop("fused")
+second.dead = True  # its functors are those of the first; present in the list, not running
+O.engines = O.engines + [second]
+O.run(100, True)
+ck.true(loop.nRecorded == 0 and loop.nFused > 0, "two PendularLoops in O.engines: no records (%d fused, %d recorded)" % (loop.nFused, loop.nRecorded))
+
+ck.finish()
