@@ -41,6 +41,10 @@ def sphere_pairs():
                   and O.bodies[i.id1].shape.__class__.__name__ == "Sphere" and O.bodies[i.id2].shape.__class__.__name__ == "Sphere")
 
 
+def real_forces():
+    return {(i.id1, i.id2): (tuple(i.phys.normalForce), getattr(i.phys, "active", None)) for i in O.interactions if i.isReal}
+
+
 def state():
     return [tuple(b.state.pos) + tuple(b.state.vel) for b in O.bodies if b.dynamic]
 
@@ -83,14 +87,14 @@ O.pause()
 O.wait()
 time.sleep(0.2)  # the last step ends (see test_gil)
 del I
-saved = (state(), {(i.id1, i.id2): (tuple(i.phys.normalForce), getattr(i.phys, "active", None)) for i in O.interactions if i.isReal})
+saved = (state(), real_forces())
 O.save(path)
 O.load(path)
-loaded = (state(), {(i.id1, i.id2): (tuple(i.phys.normalForce), getattr(i.phys, "active", None)) for i in O.interactions if i.isReal})
+loaded = (state(), real_forces())
 ck.true(loaded == saved and len(saved[1]) > 0, "saved after O.pause(): O.load gives the %d bodies' positions and velocities and the %d real "
         "interactions with their forces and bridges" % (len(saved[0]), len(saved[1])))
-ptrs = {i.phys.dict()["kn"] for i in O.interactions if i.isReal and type(i.phys).__name__ == "PendularPhys"}
-ck.true(0 not in ptrs and len(ptrs) > 0, "loaded: no interaction with the placeholder physics (kn = 0); kn of the real ones %s" % sorted(ptrs)[:3])
+kns = {i.phys.dict()["kn"] for i in O.interactions if i.isReal and type(i.phys).__name__ == "PendularPhys"}
+ck.true(0 not in kns and len(kns) > 0, "loaded: no interaction with the placeholder physics (kn = 0); kn of the real ones %s" % sorted(kns)[:3])
 O.run(100, True)
 ck.true(next(e for e in O.engines if isinstance(e, InteractionLoop)).nRecorded > 0, "the loaded scene runs on, with records")
 
