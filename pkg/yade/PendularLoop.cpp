@@ -864,6 +864,70 @@ void PendularLoop::syncObjects(bool drop, bool all)
 
 PendularLoop::~PendularLoop() { syncObjects(true, true); }
 
+namespace {
+	template <class T> long capacityBytes(const std::vector<T>& v) { return long(v.capacity() * sizeof(T)); }
+	template <class T> long capacityBytes(const std::vector<std::vector<T>>& v)
+	{
+		long bytes = long(v.capacity() * sizeof(std::vector<T>));
+		for (const auto& inner : v)
+			bytes += capacityBytes(inner);
+		return bytes;
+	}
+	template <class V> void freeVector(V& v) { V().swap(v); }
+} // namespace
+
+long PendularLoop::heldBytes() const
+{
+	return capacityBytes(slots) + capacityBytes(particles) + capacityBytes(near) + capacityBytes(epoch) + capacityBytes(work)
+	        + capacityBytes(threadForce) + capacityBytes(threadTorque) + capacityBytes(records) + capacityBytes(recordInteractions)
+	        + capacityBytes(invariants) + capacityBytes(freeRecords) + capacityBytes(freeInvariants) + capacityBytes(withObjects)
+	        + capacityBytes(toRecord) + capacityBytes(toForget) + capacityBytes(bodyPointers.states) + capacityBytes(bodyPointers.bounds);
+}
+
+void PendularLoop::freeArrays()
+{
+	freeVector(slots);
+	freeVector(particles);
+	freeVector(near);
+	freeVector(epoch);
+	freeVector(work);
+	freeVector(threadForce);
+	freeVector(threadTorque);
+	freeVector(records);
+	freeVector(recordInteractions);
+	freeVector(invariants);
+	freeVector(freeRecords);
+	freeVector(freeInvariants);
+	freeVector(withObjects);
+	freeVector(toRecord);
+	freeVector(toForget);
+	freeVector(bodyPointers.states);
+	freeVector(bodyPointers.bounds);
+	invariantsIndex = {};
+	// As a new loop: the gathering starts an epoch (epoch is empty), the pass visits every entry.
+	bodyPointers.scene  = nullptr;
+	workValid           = false;
+	workContainer       = nullptr;
+	workSize            = 0;
+	fullCheck           = true;
+	epochDisplacement   = 0;
+	reconciledRuns      = -1;
+	reconciledContainer = nullptr;
+	reconciledSize      = 0;
+	recordScene         = nullptr;
+	stale = placeholders = false;
+}
+
+void PendularLoop::releaseScene(Scene* scene)
+{
+	if (!scene) return;
+	if (Omega::instance().isRunning())
+		throw std::runtime_error("PendularLoop.release while the simulation runs (O.run()): call O.pause() or O.wait() first");
+	syncScene(scene, true, true); // the records into the objects
+	for (const auto& e : scene->engines)
+		if (auto* loop = dynamic_cast<PendularLoop*>(e.get())) loop->freeArrays();
+}
+
 void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
 {
 	if (!I) return;

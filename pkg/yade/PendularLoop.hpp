@@ -75,6 +75,16 @@ public:
 	static void syncScene(Scene* scene, bool drop, bool all = true);
 	// The same for the current scene (Python: PendularLoop.sync).
 	static void syncCurrent(bool drop, bool all = true);
+	// Gives the records back to the interactions (as sync with drop) and frees every array the PendularLoop
+	// engines of `scene` hold for it, for a scene about to be replaced (O.reset, O.load: yade_capillary.objects
+	// wraps them). YADE does not destroy the engines of a scene that O.reset replaces (not even its own
+	// InsertionSortCollider; seen with gdb on Debian's YADE 2023.02a), so without this every replaced scene
+	// kept its loop's arrays and, through the records, its interactions: 9.5 MB for a 16^3 packing, about
+	// 1.5 GB for Gladkyy's cell. A loop used again afterwards starts as a new one.
+	static void releaseScene(Scene* scene);
+	static void releaseCurrent() { releaseScene(Omega::instance().getScene().get()); }
+	// Bytes held by the loop's arrays (their capacities; Python: PendularLoop.heldBytes).
+	long heldBytes() const;
 	// The ScGeom and PendularPhys of one interaction of the current scene, made from its record if it
 	// has none of its own (Python: PendularLoop.objectsOf, called by the wrapped Interaction.geom and
 	// .phys). RuntimeError while the simulation runs in another thread.
@@ -136,6 +146,7 @@ private:
 	// placeholders; true if they were made.
 	bool store(const Record& rec, Interaction& I) const;
 	void syncObjects(bool drop, bool all);
+	void freeArrays();
 	// The recorded interactions whose objects nothing but the interaction holds get the placeholders.
 	void dropObjects();
 	// After the collider has changed the container: the slot of each record's interaction (Interaction::linIx).
@@ -256,6 +267,9 @@ public:
 		/*py*/
 		.def("sync", &PendularLoop::syncCurrent, (boost::python::arg("drop") = false, boost::python::arg("all") = true), "Write the loop's records into the Interaction, ScGeom and PendularPhys objects of the current scene (drop: and read the objects again at the next step; all: make the objects of every recorded interaction first, else write only those that exist). Called by the wrapped Python paths that read or change them (attributes of the geometry and physics, O.save, yade.utils functions); not needed in user code.")
 		.staticmethod("sync")
+		.def("release", &PendularLoop::releaseCurrent, "Give the records of the PendularLoop engines of the current scene back to its interactions and free every array they hold for it (called by the wrapped O.reset, O.load and O.loadTmp before the scene is replaced: YADE keeps the engines of a replaced scene alive); not needed in user code.")
+		.staticmethod("release")
+		.def("heldBytes", &PendularLoop::heldBytes, "Bytes held by the loop's arrays for its scene [B] (per-body, per-interaction and per-record arrays, by capacity): 0 after release.")
 		.def("objectsOf", &PendularLoop::objectsOf, (boost::python::arg("interaction")), "Make the ScGeom and PendularPhys of a recorded interaction of the current scene from its record, if it holds the placeholders. Called by the wrapped Interaction.geom and Interaction.phys; not needed in user code.")
 		.staticmethod("objectsOf")
 		.def("readersGuarded", &PendularLoop::guardReaders, "Declare that the Python paths that read or change interactions call sync (yade_capillary.objects.guard does it); before, no records are kept.")

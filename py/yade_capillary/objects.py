@@ -15,6 +15,8 @@ path that reads or changes those objects so that it calls PendularLoop first:
   dropped, since another loop may read the objects);
 * Serializable.dict and pickling, O.save, O.saveTmp and O.sceneToString, Law2_ScGeom_PendularPhys_Bridge.liquidTotals
   (reading: sync, every recorded interaction's objects made), O.bodies.replace (sync and drop);
+* O.reset, O.load and O.loadTmp (PendularLoop.release first: YADE keeps the engines of the scene they replace
+  alive, and the loop's arrays and records with them);
 * while the simulation runs in another thread, all of these but the attributes of objects already held raise
   RuntimeError (the loop makes and drops the objects between steps);
 * NewtonIntegrator's damping, gravity, dampGravity, exactAsphericalRot and mask (assigning: noted for
@@ -59,6 +61,16 @@ def _calling(f, sync, drop):
         sync(drop)
         return f(*args, **kw)
     call.__doc__ = (f.__doc__ or "") + "\n(yade-capillary: PendularLoop's records are written into the interactions first)"
+    return call
+
+
+def _releasing(f, release):
+    @functools.wraps(f)
+    def call(self, *args, **kw):
+        if not self.running:  # YADE stops a running simulation itself; its loop's arrays then stay with it
+            release()
+        return f(self, *args, **kw)
+    call.__doc__ = (f.__doc__ or "") + "\n(yade-capillary: PendularLoop's records are given back and its arrays freed first)"
     return call
 
 
@@ -107,6 +119,9 @@ def guard():
     for name in ("save", "saveTmp", "sceneToString"):
         setattr(w.Omega, name, _calling(getattr(w.Omega, name), sync, False))
     w.BodyContainer.replace = _calling(w.BodyContainer.replace, sync, True)
+    # YADE keeps the engines of a scene that these replace alive: the loop frees what it holds for it first.
+    for name in ("reset", "load", "loadTmp"):
+        setattr(w.Omega, name, _releasing(getattr(w.Omega, name), w.PendularLoop.release))
     w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals = _calling(w.Law2_ScGeom_PendularPhys_Bridge.liquidTotals, sync, False)
     # yade's launcher has already run `from yade.utils import *` in __main__, where scripts and PyRunner
     # commands run: their bare names (createInteraction, getStress, ...) are rebound there as well.

@@ -14,6 +14,7 @@
 #   its own (continuing it is test_save_continue's).
 # - Two PendularLoops in O.engines keep no records (the second would take the first one's placeholders
 #   for objects of its own).
+# - O.reset and O.load free the arrays of the replaced scene's loop (section 4).
 import os
 import tempfile
 import time
@@ -106,5 +107,28 @@ second.dead = True  # its functors are those of the first; present in the list, 
 O.engines = O.engines + [second]
 O.run(100, True)
 ck.true(loop.nRecorded == 0 and loop.nFused > 0, "two PendularLoops in O.engines: no records (%d fused, %d recorded)" % (loop.nFused, loop.nRecorded))
+
+# 4. O.reset and O.load free what the loop holds for the scene they replace: YADE keeps the engines of a
+#    replaced scene alive, and a loop kept its arrays and, through its records, the interactions (a script
+#    that loaded ten Gladkyy-size states in one process grew to 18 GB). A released loop used again computes
+#    as a new one: the same positions and velocities after 100 steps, bit for bit.
+loop = build()
+O.run(100, True)
+held, recorded = loop.heldBytes(), loop.nRecorded
+O.reset()
+ck.true(recorded > 0 and held > 0 and loop.heldBytes() == 0,
+        "O.reset: the replaced scene's PendularLoop holds %d B (%d B and %d records before)" % (loop.heldBytes(), held, recorded))
+build()
+O.run(100, True)
+fresh = state()
+build()
+O.engines = [loop if isinstance(e, InteractionLoop) else e for e in O.engines]
+O.run(100, True)
+ck.true(state() == fresh and loop.nRecorded > 0, "the released loop in a new scene: the %d bodies as with a new loop after 100 steps" % len(fresh))
+path = os.path.join(tempfile.mkdtemp(), "records.yade.gz")
+O.save(path)
+held = loop.heldBytes()
+O.load(path)
+ck.true(held > 0 and loop.heldBytes() == 0, "O.load: the replaced scene's PendularLoop holds %d B (%d B before)" % (loop.heldBytes(), held))
 
 ck.finish()
