@@ -229,7 +229,7 @@ def engine_times(steps):
     return {"%s%s" % (e.__class__.__name__, "(%s)" % e.label if e.label else ""): e.execTime / steps for e in O.engines}
 
 
-def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=100):
+def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=100, state=None):
     """Speed probe of a Gladkyy-size cell (shearcell.GLADKYY_SIZE: about 170 000 flowing spheres plus
     the rough walls), rotating. The flowing spheres are built touching (ring lattice of 2 R, filled
     to 1.2 H: about 166 000 flowing spheres), so that contacts and bridges exist from the first steps, as in a settled cell; 100 steps
@@ -239,14 +239,23 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     Returns a dict: numbers of spheres and interactions, wall time per step in each mode, the projected wall time [h] of `run_s` seconds of rotation at the configuration's time
     step with records, ns per step of each engine (where the time goes; both modes) and the
     PendularLoop counts of the last step (real, recorded, apart, apart by the gap bound, out of order,
-    sorts so far) and the time spent sorting the interaction container per step."""
+    sorts so far) and the time spent sorting the interaction container per step.
+    state: a state saved by shearcell.save_state (a Gladkyy-size run under way: the sheared packing with
+    its bridges, `case` ignored) to probe instead of the lattice. A lattice built touching is still
+    collapsing in the timed steps: its spheres move faster than in a settled, sheared cell, so the collider
+    runs more often (collider_runs_per_step tells)."""
     from . import shearcell
 
-    cfg = shearcell.GLADKYY_SIZE
-    ids = shearcell.build(cfg, case, spacing=2.0, fill=1.2)
-    O.engines = shearcell.run_engines({"rotating": ids["rotating"], "cfg": cfg}, loop)
-    O.dt = cfg["dt_over_tc"] * cfg["tc"]
+    if state is None:
+        cfg = shearcell.GLADKYY_SIZE
+        ids = shearcell.build(cfg, case, spacing=2.0, fill=1.2)
+        O.engines = shearcell.run_engines({"rotating": ids["rotating"], "cfg": cfg}, loop)
+        O.dt = cfg["dt_over_tc"] * cfg["tc"]
+    else:
+        ids = shearcell.load_state(state, loop=loop)
     O.run(100, True)
+    collider = next(e for e in O.engines if e.label == "collider")
+    runs0 = collider.numAction
     O.timingEnabled = True
     for e in O.engines:
         e.execTime = 0
@@ -271,7 +280,8 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     out = {"spheres": len(O.bodies), "flowing": len(ids["flowing"]), "real_interactions": O.interactions.countReal(),
            "interactions": len(O.interactions), "s_per_step": per_step, "particle_steps_per_s": len(ids["flowing"]) / per_step,
            "projected_h": per_step * run_s / O.dt / 3600, "run_s": run_s, "dt": O.dt, "threads": O.numThreads,
-           "engines_ns_per_step": engine_times(steps)}
+           "engines_ns_per_step": engine_times(steps), "collider_runs_per_step": (collider.numAction - runs0) / steps,
+           "start": "state %s (t = %.3f s)" % (state, ids["t_offset_s"]) if state else "lattice built touching"}
     if fused is not None and done[(False, False)] and done[(True, False)]:
         out["s_per_step_without_records"] = wall[(False, False)] / done[(False, False)]
         out["s_per_step_without_skip"] = wall[(True, False)] / done[(True, False)]

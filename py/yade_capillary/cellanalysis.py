@@ -770,3 +770,55 @@ def _contact_plot(rundir, a, n, f):
     fig.tight_layout()
     fig.savefig(os.path.join(rundir, "contacts_vs_a.png"), dpi=110)
     plt.close(fig)
+
+
+def stress_parts(snap, cfg):
+    """The stress of one snapshot (shearcell.snapshot's arrays, as a dict) split by where it comes from: the
+    separated bridges (surface separation a > 0, the capillary force alone), the contacts (a <= 0: spring and
+    dashpot, and F(0) only where forceInContact is on; Gladkyy 2014 eq. (4) has it off) and the kinetic stress
+    (relative to the snapshot's own mean angular velocity at each particle, as analyse). Returns {"bridges",
+    "contacts", "kinetic"}, each (3, 3, nr, nz) [Pa] on analysis_grid(cfg)."""
+    grid = analysis_grid(cfg)
+    apart = np.asarray(snap["gap"]) > 0
+    part = lambda m: cg.contact_stress(grid, snap["xP"][m], snap["xI"][m], snap["F"][m]) if m.any() else np.zeros((3, 3) + grid.R.shape)
+    rho, j = cg.density_and_momentum(grid, snap["x"], snap["v"], snap["m"])
+    omega_at = _omega_lookup(grid, cg.angular_velocity(grid, rho, j))
+    return {"bridges": part(apart), "contacts": part(~apart), "kinetic": cg.kinetic_stress(grid, snap["x"], snap["v"], snap["m"], omega_at)}
+
+
+def run_band(rundir, heights=GLADKYY_HEIGHTS):
+    """The band nodes (boolean (nr, nz) on analysis_grid) of a complete run's fit from its reduced snapshots
+    (analyse_reduced's 'relative' selection, the one of mu and c)."""
+    with open(os.path.join(rundir, "run.json")) as f:
+        run = json.load(f)
+    files = sorted(glob.glob(os.path.join(rundir, "cg_*.npz")))
+    if not files:
+        raise ValueError("run_band: no reduced snapshots (cg_*.npz) in %s" % rundir)
+    return _fit_reduced(analysis_grid(run["cfg"]), [dict(np.load(f)) for f in files], run, heights=heights)[1]["band"]
+
+
+def band_decomposition(parts, band, dry_line):
+    """How the band's shear stress over the dry material's divides among the parts of the stress.
+
+    parts: {name: sigma (3, 3, nr, nz) [Pa]} whose sum is the stress; band: boolean (nr, nz) of the band
+    nodes; dry_line: (mu, c_Pa) of the dry material. At each band node the shear of every part is its
+    (r theta, z theta) shear projected on the direction of the total's (so that the parts' shears add up
+    to tau of cg.pressure_and_shear), p its tr/3. The excess tau - (c + mu p) then splits exactly into
+    tau_k - mu p_k for every part but one, `contacts`, which also takes -c: for the contacts that is how
+    far their own network departs from the dry line at their own pressure; for the bridges, their direct
+    shear plus mu times their tension. Returns {"p_Pa", "tau_Pa", "excess_Pa", and per part "p_<k>_Pa",
+    "tau_<k>_Pa", "excess_<k>_Pa"}, means over the band nodes."""
+    mu, c = dry_line
+    sym = {k: 0.5 * (s + np.swapaxes(s, 0, 1)) for k, s in parts.items()}
+    total = sum(sym.values())
+    shear = np.stack([total[0, 1], total[2, 1]])
+    norm = np.hypot(shear[0], shear[1])
+    u = np.divide(shear, norm, out=np.zeros_like(shear), where=norm > 0)
+    trace = lambda s: (s[0, 0] + s[1, 1] + s[2, 2]) / 3
+    out = {"p_Pa": float(trace(total)[band].mean()), "tau_Pa": float(norm[band].mean())}
+    out["excess_Pa"] = out["tau_Pa"] - (c + mu * out["p_Pa"])
+    for k, s in sym.items():
+        p_k = float(trace(s)[band].mean())
+        tau_k = float((u[0] * s[0, 1] + u[1] * s[2, 1])[band].mean())
+        out.update({"p_%s_Pa" % k: p_k, "tau_%s_Pa" % k: tau_k, "excess_%s_Pa" % k: tau_k - mu * p_k - (c if k == "contacts" else 0.0)})
+    return out

@@ -365,3 +365,38 @@ def test_interim(rundir, tmp_path):
     out = cellanalysis.interim(str(keep), heights=cellanalysis.GLADKYY_HEIGHTS)
     ref13 = cellanalysis.analyse_reduced(str(keep), heights=13, outdir=str(tmp_path), run=json.loads((rundir / "run.json").read_text()))
     assert len(out["band_fits"]) == 13 and out["Rc_m"] == pytest.approx(ref13["Rc_m"], rel=1e-12)
+
+
+def test_stress_parts_and_band_decomposition():
+    """stress_parts splits the contact stress at a = 0 (bridges a > 0, contacts a <= 0; the two sum to the
+    whole contact stress, as cg.contact_stress is linear in the contacts), and band_decomposition splits the
+    excess over the dry line exactly: the parts' excesses sum to the total's, and a stress that lies on the
+    dry line has no excess."""
+    rng = np.random.default_rng(3)
+    n = 400
+    r, t, z = rng.uniform(0.02, 0.05, n), rng.uniform(0, 2 * np.pi, n), rng.uniform(0.004, 0.025, n)
+    xP = np.stack([r * np.cos(t), r * np.sin(t), z], axis=1)
+    xI = xP + rng.normal(scale=2e-3, size=(n, 3))
+    snap = {"xP": xP, "xI": xI, "F": rng.normal(size=(n, 3)), "gap": rng.uniform(-1e-4, 1e-4, n), "x": xP, "v": rng.normal(scale=1e-3, size=(n, 3)),
+            "m": np.full(n, 1e-4)}
+    parts = cellanalysis.stress_parts(snap, CFG)
+    whole = cellanalysis.cg.contact_stress(cellanalysis.analysis_grid(CFG), xP, xI, snap["F"])
+    assert np.allclose(parts["bridges"] + parts["contacts"], whole, rtol=1e-12, atol=1e-12 * np.abs(whole).max())
+    assert np.abs(parts["bridges"]).max() > 0 and np.abs(parts["contacts"]).max() > 0
+
+    band = np.zeros(parts["contacts"].shape[2:], bool)
+    band[5:15, 3:8] = True
+    out = cellanalysis.band_decomposition(parts, band, (0.12, -0.04))
+    for q in ("p", "tau", "excess"):
+        assert sum(out["%s_%s_Pa" % (q, k)] for k in parts) == pytest.approx(out["%s_Pa" % q], rel=1e-12, abs=1e-12)
+
+    # One part on the dry line tau = c + mu p at every node (shear along r theta): no excess.
+    mu, c = 0.12, 0.3
+    p = np.full(band.shape, 20.0)
+    line = np.zeros((3, 3) + band.shape)
+    for k in range(3):
+        line[k, k] = p
+    line[0, 1] = line[1, 0] = c + mu * p
+    out = cellanalysis.band_decomposition({"contacts": line}, band, (mu, c))
+    assert out["excess_Pa"] == pytest.approx(0.0, abs=1e-12) and out["excess_contacts_Pa"] == pytest.approx(0.0, abs=1e-12)
+    assert out["tau_Pa"] == pytest.approx(c + mu * 20.0, rel=1e-12)
