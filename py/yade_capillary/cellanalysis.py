@@ -809,16 +809,15 @@ def band_decomposition(parts, band, dry_line):
     shear plus mu times their tension. Returns {"p_Pa", "tau_Pa", "excess_Pa", and per part "p_<k>_Pa",
     "tau_<k>_Pa", "excess_<k>_Pa"}, means over the band nodes."""
     mu, c = dry_line
-    sym = {k: 0.5 * (s + np.swapaxes(s, 0, 1)) for k, s in parts.items()}
-    total = sum(sym.values())
-    shear = np.stack([total[0, 1], total[2, 1]])
+    split = {k: cg.pressure_and_shear_components(s) for k, s in parts.items()}
+    p = sum(p_k for p_k, _ in split.values())
+    shear = sum(shear_k for _, shear_k in split.values())
     norm = np.hypot(shear[0], shear[1])
     u = np.divide(shear, norm, out=np.zeros_like(shear), where=norm > 0)
-    trace = lambda s: (s[0, 0] + s[1, 1] + s[2, 2]) / 3
-    out = {"p_Pa": float(trace(total)[band].mean()), "tau_Pa": float(norm[band].mean())}
+    out = {"p_Pa": float(p[band].mean()), "tau_Pa": float(norm[band].mean())}
     out["excess_Pa"] = out["tau_Pa"] - (c + mu * out["p_Pa"])
-    for k, s in sym.items():
-        p_k = float(trace(s)[band].mean())
-        tau_k = float((u[0] * s[0, 1] + u[1] * s[2, 1])[band].mean())
+    for k, (p_k, shear_k) in split.items():
+        p_k = float(p_k[band].mean())
+        tau_k = float((u[0] * shear_k[0] + u[1] * shear_k[1])[band].mean())
         out.update({"p_%s_Pa" % k: p_k, "tau_%s_Pa" % k: tau_k, "excess_%s_Pa" % k: tau_k - mu * p_k - (c if k == "contacts" else 0.0)})
     return out

@@ -159,11 +159,18 @@ def kinetic_stress(grid, x, v, m, omega_at):
     return grid.accumulate(r, z, np.einsum("i,ia,ib->iab", m, vc, vc).reshape(len(m), 9)).reshape((3, 3) + grid.R.shape)
 
 
+def pressure_and_shear_components(sigma):
+    """p = tr(sigma)/3 and the two components that carry the azimuthal shear, stacked as
+    (sigma_r_theta, sigma_z_theta), of the symmetrised cylindrical stress (3, 3, ...) [Pa]."""
+    s = 0.5 * (sigma + np.swapaxes(sigma, 0, 1))
+    return (s[0, 0] + s[1, 1] + s[2, 2]) / 3, np.stack([s[0, 1], s[2, 1]])
+
+
 def pressure_and_shear(sigma):
     """p = tr(sigma)/3 and tau = sqrt(sigma_r_theta^2 + sigma_z_theta^2) (the stresses that
     carry the azimuthal shear), from a symmetrised cylindrical stress (3, 3, ...) [Pa]."""
-    s = 0.5 * (sigma + np.swapaxes(sigma, 0, 1))
-    return (s[0, 0] + s[1, 1] + s[2, 2]) / 3, np.hypot(s[0, 1], s[2, 1])
+    p, shear = pressure_and_shear_components(sigma)
+    return p, np.hypot(shear[0], shear[1])
 
 
 def strain_rate(grid, omega):
