@@ -876,33 +876,38 @@ namespace {
 	template <class V> void freeVector(V& v) { V().swap(v); }
 } // namespace
 
+// Every array the loop holds for its scene, the one list heldBytes and freeArrays go through.
+template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, Visit&& visit)
+{
+	visit(loop.slots);
+	visit(loop.particles);
+	visit(loop.near);
+	visit(loop.epoch);
+	visit(loop.work);
+	visit(loop.threadForce);
+	visit(loop.threadTorque);
+	visit(loop.records);
+	visit(loop.recordInteractions);
+	visit(loop.invariants);
+	visit(loop.freeRecords);
+	visit(loop.freeInvariants);
+	visit(loop.withObjects);
+	visit(loop.toRecord);
+	visit(loop.toForget);
+	visit(loop.bodyPointers.states);
+	visit(loop.bodyPointers.bounds);
+}
+
 long PendularLoop::heldBytes() const
 {
-	return capacityBytes(slots) + capacityBytes(particles) + capacityBytes(near) + capacityBytes(epoch) + capacityBytes(work)
-	        + capacityBytes(threadForce) + capacityBytes(threadTorque) + capacityBytes(records) + capacityBytes(recordInteractions)
-	        + capacityBytes(invariants) + capacityBytes(freeRecords) + capacityBytes(freeInvariants) + capacityBytes(withObjects)
-	        + capacityBytes(toRecord) + capacityBytes(toForget) + capacityBytes(bodyPointers.states) + capacityBytes(bodyPointers.bounds);
+	long bytes = 0;
+	forEachArray(*this, [&bytes](const auto& v) { bytes += capacityBytes(v); });
+	return bytes;
 }
 
 void PendularLoop::freeArrays()
 {
-	freeVector(slots);
-	freeVector(particles);
-	freeVector(near);
-	freeVector(epoch);
-	freeVector(work);
-	freeVector(threadForce);
-	freeVector(threadTorque);
-	freeVector(records);
-	freeVector(recordInteractions);
-	freeVector(invariants);
-	freeVector(freeRecords);
-	freeVector(freeInvariants);
-	freeVector(withObjects);
-	freeVector(toRecord);
-	freeVector(toForget);
-	freeVector(bodyPointers.states);
-	freeVector(bodyPointers.bounds);
+	forEachArray(*this, [](auto& v) { freeVector(v); });
 	invariantsIndex = {};
 	// As a new loop: the gathering starts an epoch (epoch is empty), the pass visits every entry.
 	bodyPointers.scene  = nullptr;

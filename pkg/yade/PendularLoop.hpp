@@ -147,6 +147,7 @@ private:
 	bool store(const Record& rec, Interaction& I) const;
 	void syncObjects(bool drop, bool all);
 	void freeArrays();
+	template <class Loop, class Visit> static void forEachArray(Loop& loop, Visit&& visit);
 	// The recorded interactions whose objects nothing but the interaction holds get the placeholders.
 	void dropObjects();
 	// After the collider has changed the container: the slot of each record's interaction (Interaction::linIx).
