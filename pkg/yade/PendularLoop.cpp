@@ -36,6 +36,10 @@ namespace {
 	// An epoch of the bound on the gaps of potential pairs (gather) ends when a body has moved this
 	// fraction of the smallest sphere radius from where it was at its start.
 	constexpr Real epochMove = 0.1;
+	// Entries of the container per chunk of the pass's static schedule: small enough that the threads
+	// get nearly equal shares of a short list (1024 gave one of two threads 4 chunks of the ci cell's 7,
+	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
+	constexpr long passChunk = 256;
 
 	// The largest float not above x: a lower bound that fits the 32-byte slot.
 	float roundedDown(Real x)
@@ -128,13 +132,16 @@ void PendularLoop::gather(int threads)
 {
 	const auto&  bodies = *scene->bodies;
 	const size_t n      = bodies.size();
+	particles.swap(previous); // the last pass's particles stay readable for the records' shearInc (shearIncrement)
 	particles.resize(n);
 	near.resize(n);
 	for (auto& f : threadForce)
 		f.resize(n);
 	for (auto& t : threadTorque)
 		t.resize(n);
-	const size_t forceArrays = threadForce.size();
+	// One thread: its force arrays are zeroed in this sweep (one sweep over the bodies fewer). Several:
+	// each thread zeroes its own at the start of the pass (zeroPerThread), in its own cache.
+	const bool zeroHere = threadForce.size() == 1;
 	bodyPointers.scene = nullptr; // valid once the pass is complete
 	bodyPointers.states.resize(n);
 	bodyPointers.bounds.resize(n);
@@ -168,16 +175,18 @@ void PendularLoop::gather(int threads)
 			__builtin_prefetch(ahead.shape.get());
 			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
 		}
-		for (size_t t = 0; t < forceArrays; ++t) { // in the same pass: one sweep over the bodies fewer
-			threadForce[t][id]  = Vector3r::Zero();
-			threadTorque[t][id] = Vector3r::Zero();
+		if (zeroHere) {
+			threadForce[0][id]  = Vector3r::Zero();
+			threadTorque[0][id] = Vector3r::Zero();
 		}
-		Particle&   p = particles[id];
+		// Made in registers and stored once: reading back a Particle just stored field by field stalls
+		// on a line that another thread read in the last pass (with two threads that stall was most of
+		// the gathering's time).
+		Particle    p;
 		const auto& b = bodies[id];
-		near[id]      = Near { Vector3r::Zero(), 0 };
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
 		pendular::readBody(b.get(), scene->subdomain, states[id], bounds[id], clumps, aspherical, subdomains);
-		if (!b) p.kind = missing;
+		if (!b) p = Particle { Vector3r::Zero(), Vector3r::Zero(), Vector3r::Zero(), 0, 0, 0, missing };
 		else {
 			const State& s = *b->state;
 			p.pos          = s.pos;
@@ -201,14 +210,17 @@ void PendularLoop::gather(int threads)
 					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 			}
 		}
+		particles[id] = p;
 		if (p.kind != pendularSphere) {
-			restart = math::max(restart, int(epoch[id].radius != 0));
+			near[id] = Near { Vector3r::Zero(), 0 };
+			restart  = math::max(restart, int(epoch[id].radius != 0));
 			continue;
 		}
-		near[id] = Near { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
+		const Near q { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
+		near[id] = q;
 		films    = math::max(films, int(p.reach != 0));
 		rmin     = math::min(rmin, p.radius);
-		restart  = math::max(restart, int(epoch[id].radius != near[id].radius));
+		restart  = math::max(restart, int(epoch[id].radius != q.radius));
 		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
 	}
 	bodyPointers.clumps     = clumps;
@@ -302,9 +314,11 @@ void PendularLoop::action()
 #endif
 	{
 		Counts c;
+		c.thread = threadNum();
+		zeroPerThread(c.thread);
 		if (fast) {
 #ifdef YADE_OPENMP
-#pragma omp for schedule(static, 1024)
+#pragma omp for schedule(static, passChunk)
 #endif
 			for (long k = 0; k < m; ++k) {
 				// A third level for the list: its entries are not contiguous, so the hardware does not
@@ -321,7 +335,7 @@ void PendularLoop::action()
 			long     before    = -2;
 			uint64_t beforeKey = 0;
 #ifdef YADE_OPENMP
-#pragma omp for schedule(static, 1024)
+#pragma omp for schedule(static, passChunk)
 #endif
 			for (long i = 0; i < size; ++i) {
 				visit(i, i + prefetchAhead < size ? i + prefetchAhead : -1, i + 2 * prefetchAhead < size ? i + 2 * prefetchAhead : -1, r, skipApart,
@@ -354,6 +368,8 @@ void PendularLoop::action()
 	nApart        = apart;
 	nRecorded     = recorded;
 	nBounded      = bounded;
+	seenDt         = scene->dt; // what the records' shearInc now follows from (recordShearInc)
+	seenRatcheting = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
 	settleRecords();
 	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns);
 	stale         = liveRecords() > 0;
@@ -391,11 +407,10 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
 				prefetchObject(&particles[ahead.id1]);
 				prefetchObject(&particles[ahead.id2]);
-				const int t = threadNum();
-				__builtin_prefetch(&threadForce[t][ahead.id1], 1);
-				__builtin_prefetch(&threadForce[t][ahead.id2], 1);
-				__builtin_prefetch(&threadTorque[t][ahead.id1], 1);
-				__builtin_prefetch(&threadTorque[t][ahead.id2], 1);
+				__builtin_prefetch(&threadForce[c.thread][ahead.id1], 1);
+				__builtin_prefetch(&threadForce[c.thread][ahead.id2], 1);
+				__builtin_prefetch(&threadTorque[c.thread][ahead.id1], 1);
+				__builtin_prefetch(&threadTorque[c.thread][ahead.id2], 1);
 			} else if (skipApart && (fullCheck || !(ahead.gapBound > 2 * epochDisplacement))) { // a potential pair to check: its bodies
 				__builtin_prefetch(&near[ahead.id1]);
 				__builtin_prefetch(&near[ahead.id2]);
@@ -418,17 +433,17 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			    && p2->subdomain == scene->subdomain) {
 				++c.fused;
 				++c.recorded;
-				if (!recordStep(rec, r, threadNum())) {
+				if (!recordStep(rec, r, c.thread)) {
 					scene->interactions->requestErase(I);
-					toForget[threadNum()].push_back(slot.record);
+					toForget[c.thread].push_back(slot.record);
 					slot.record   = Slot::potentialPair;
 					slot.gapBound = -std::numeric_limits<float>::infinity();
 				}
 				return;
 			}
 			// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-			store(rec, *I); // its own objects again (made in this thread: the record is forgotten after the pass)
-			toForget[threadNum()].push_back(slot.record);
+			store(rec, *I, previous); // its own objects again (made in this thread: the record is forgotten after the pass)
+			toForget[c.thread].push_back(slot.record);
 			slot.record = Slot::none;
 		} else if (skipApart && slot.potential()) {
 			// A potential interaction of two PendularMat spheres seen in an earlier step (same object, so
@@ -455,7 +470,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			}
 		}
 	}
-	step(I, r, c.fused, c.dispatched);
+	step(I, r, c);
 	// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the control
 	// block, one more cache line per interaction and step.
 	if (!slot.same(I)) slot.interaction = I;
@@ -463,7 +478,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 	slot.id2      = I->getId2();
 	slot.record   = I->isReal() ? Slot::none : Slot::potentialPair;
 	slot.gapBound = -std::numeric_limits<float>::infinity();
-	if (recording && !slot.potential() && recordable(*I, r)) toRecord[threadNum()].push_back(i);
+	if (recording && !slot.potential() && recordable(*I, r)) toRecord[c.thread].push_back(i);
 }
 
 // How many times the scene's colliders have run (InsertionSortCollider::numAction counts the steps it
@@ -619,7 +634,7 @@ void PendularLoop::forget(int index)
 // arithmetic of sphereGeometry. An interaction that holds the placeholders gets a new ScGeom (all its
 // attributes are the record's or follow from the bodies; the axes of ScGeom::rotate are computed
 // before any use) and a copy of its invariants' prototype physics.
-bool PendularLoop::store(const Record& rec, Interaction& I) const
+bool PendularLoop::store(const Record& rec, Interaction& I, const std::vector<Particle>& seen) const
 {
 	if (!I.geom || !I.phys) return false; // reset by the law in this step
 	const bool make = holdsPlaceholders(I);
@@ -630,13 +645,13 @@ bool PendularLoop::store(const Record& rec, Interaction& I) const
 	auto& geom            = static_cast<ScGeom&>(*I.geom);
 	auto& phys            = static_cast<PendularPhys&>(*I.phys);
 	geom.normal           = rec.normal;
-	geom.shearInc         = rec.shearInc;
+	geom.shearInc         = recordShearInc(rec, seen);
 	geom.penetrationDepth = rec.penetrationDepth;
-	if (size_t(math::max(rec.id1, rec.id2)) < particles.size()) {
-		const Particle& p1 = particles[rec.id1];
+	if (size_t(math::max(rec.id1, rec.id2)) < seen.size()) {
+		const Particle& p1 = seen[rec.id1];
 		geom.contactPoint  = p1.pos + (p1.radius - 0.5 * rec.penetrationDepth) * rec.normal;
 		geom.radius1       = p1.radius;
-		geom.radius2       = particles[rec.id2].radius;
+		geom.radius2       = seen[rec.id2].radius;
 	} else if (make) { // a body that is gone: nothing to complete the new object from
 		geom.contactPoint = Vector3r::Constant(NaN);
 		geom.radius1 = geom.radius2 = NaN;
@@ -682,7 +697,10 @@ bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
 	RecordGeom        geom { rec.normal, rec.shearInc, rec.penetrationDepth, zero, 0, 0 };
 	RecordPhys        phys { rec.normalForce, rec.shearForce, rec.Fcap, rec.active, inv.bridge, inv.kn, inv.cn, inv.ks, inv.cs, inv.tangensOfFrictionAngle,
                       inv.Vb, inv.wet, inv.forceInContact };
-	const Rotation    rotation = sphereGeometry(geom, p1, p2, normal, p1.radius + p2.radius - norm, zero, zero, false, r);
+	const Real        depth = p1.radius + p2.radius - norm;
+	// Separating: the shearInc of the last step in contact, which the objects keep while separated.
+	if (depth < 0 && rec.penetrationDepth >= 0) rec.shearInc = recordShearInc(rec, previous);
+	const Rotation rotation = sphereGeometry(geom, p1, p2, normal, depth, zero, zero, false, r, true, inv.tangensOfFrictionAngle > 0);
 	return applyLaw(rec.id1, rec.id2, rec.isActive, geom, phys, r, zero, zero, rotation, thread);
 }
 
@@ -881,6 +899,7 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 {
 	visit(loop.slots);
 	visit(loop.particles);
+	visit(loop.previous);
 	visit(loop.near);
 	visit(loop.epoch);
 	visit(loop.work);
@@ -999,7 +1018,7 @@ boost::python::dict PendularLoop::memory() const
 	return d;
 }
 
-void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount)
+void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, Counts& c)
 {
 	const Body::id_t id1 = I->getId1(), id2 = I->getId2();
 	if (removeUnseen && !I->isReal() && I->iterLastSeen < scene->iter) return;
@@ -1016,11 +1035,11 @@ void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, lon
 	}
 	if (p1->kind == clump || p2->kind == clump) return;
 	if (r.fused && p1->kind == pendularSphere && p2->kind == pendularSphere) {
-		++fused;
-		sphereSphere(I, r, threadNum());
+		++c.fused;
+		sphereSphere(I, r, c.thread);
 	} else {
-		++dispatchedCount;
-		dispatched(I, r, threadNum());
+		++c.dispatched;
+		dispatched(I, r, c.thread);
 	}
 }
 
@@ -1065,35 +1084,52 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 
 template <class Geom>
 PendularLoop::Rotation PendularLoop::sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth,
-                                                    const Vector3r& shift2, const Vector3r& shiftVel, bool isNew, const Resolved& r) const
+                                                    const Vector3r& shift2, const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record,
+                                                    bool rotation) const
 {
 	geom.contactPoint     = p1.pos + (p1.radius - 0.5 * depth) * normal;
 	geom.penetrationDepth = depth;
 	geom.radius1          = p1.radius;
 	geom.radius2          = p2.radius;
-	Rotation rotation;
+	Rotation axes;
 	if (depth >= 0 || isNew) { // in contact: what the law's tangential spring reads
-		if (!isNew) {
-			rotation.orthonormalAxis = geom.normal.cross(normal);
-			const Real angle         = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
-			rotation.twistAxis       = angle * geom.normal;
+		if (!isNew && rotation) {
+			axes.orthonormalAxis = geom.normal.cross(normal);
+			const Real angle     = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
+			axes.twistAxis       = angle * geom.normal;
 		}
 		geom.normal = normal;
-		Vector3r relVel;
-		if (r.ig2->avoidGranularRatcheting) {
-			const Real alpha = (geom.radius1 + geom.radius2) / (geom.radius1 + geom.radius2 - geom.penetrationDepth);
-			relVel = (p2.vel - p1.vel) * alpha + p2.angVel.cross(-geom.radius2 * normal) - p1.angVel.cross(geom.radius1 * normal);
-			relVel += alpha * shiftVel;
-		} else {
-			const Vector3r c1x = geom.contactPoint - p1.pos, c2x = geom.contactPoint - (p2.pos + shift2);
-			relVel             = (p2.vel + p2.angVel.cross(c2x)) - (p1.vel + p1.angVel.cross(c1x));
-			relVel += shiftVel;
-		}
-		relVel        = relVel - normal.dot(relVel) * normal;
-		geom.shearInc = relVel * scene->dt;
+		if (!record)
+			geom.shearInc = shearIncrement(p1, p2, normal, depth, geom.contactPoint, shift2, shiftVel, r.ig2->avoidGranularRatcheting, scene->dt);
 	} else
 		geom.normal = normal; // a separated bridge: the gap and the normal only
-	return rotation;
+	return axes;
+}
+
+Vector3r PendularLoop::shearIncrement(const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& contactPoint,
+                                      const Vector3r& shift2, const Vector3r& shiftVel, bool ratcheting, Real dt)
+{
+	Vector3r relVel;
+	if (ratcheting) {
+		const Real alpha = (p1.radius + p2.radius) / (p1.radius + p2.radius - depth);
+		relVel           = (p2.vel - p1.vel) * alpha + p2.angVel.cross(-p2.radius * normal) - p1.angVel.cross(p1.radius * normal);
+		relVel += alpha * shiftVel;
+	} else {
+		const Vector3r c1x = contactPoint - p1.pos, c2x = contactPoint - (p2.pos + shift2);
+		relVel             = (p2.vel + p2.angVel.cross(c2x)) - (p1.vel + p1.angVel.cross(c1x));
+		relVel += shiftVel;
+	}
+	relVel = relVel - normal.dot(relVel) * normal;
+	return relVel * dt;
+}
+
+Vector3r PendularLoop::recordShearInc(const Record& rec, const std::vector<Particle>& seen) const
+{
+	if (!(rec.penetrationDepth >= 0) || size_t(math::max(rec.id1, rec.id2)) >= seen.size()) return rec.shearInc;
+	const Particle& p1           = seen[rec.id1];
+	const Vector3r  contactPoint = p1.pos + (p1.radius - 0.5 * rec.penetrationDepth) * rec.normal;
+	const Vector3r  zero         = Vector3r::Zero();
+	return shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, seenRatcheting, seenDt);
 }
 
 template <class Geom, class Phys, class Rotate>
@@ -1169,11 +1205,39 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 	if (I->isReal()) callbacksOn(*I, r);
 }
 
+// With several threads, at the start of the pass: thread t zeroes the force arrays t, t + T, ... (T the
+// threads of the pass; all of them if OpenMP gave fewer than asked for). Zeroing another thread's array
+// (as the gathering's sweep over the bodies did) writes lines that that thread wrote in the last pass and
+// the flush read: each write then waits for the other core, and the gathering did not get faster
+// with two threads.
+void PendularLoop::zeroPerThread(int thread)
+{
+	if (threadForce.size() == 1) return; // zeroed by the gathering
+#ifdef YADE_OPENMP
+	const size_t stride = size_t(omp_get_num_threads());
+#else
+	const size_t stride = 1;
+#endif
+	for (size_t k = size_t(thread); k < threadForce.size(); k += stride) {
+		std::fill(threadForce[k].begin(), threadForce[k].end(), Vector3r::Zero());
+		std::fill(threadTorque[k].begin(), threadTorque[k].end(), Vector3r::Zero());
+	}
+}
+
 void PendularLoop::flushForces(int threads)
 {
-	// In parallel: a body's sum goes into the force container's buffer of the thread that adds it,
-	// the other threads' buffers hold nothing for it.
-	const long n = long(particles.size());
+	// Into the force container's summed arrays (addForceUnsynced), not through addForce: addForce
+	// writes the container's shared flag and its per-thread maximum ids at every call, and two
+	// threads doing so contend for those cache lines (it doubled this phase on two threads). sync()
+	// adds the per-thread buffers to the summed arrays (+=), so what others added before (summed
+	// here, as the integrator's sync would) or add after this step's flush is kept. addMaxId + sync
+	// make the summed arrays cover every body: sync resizes them whenever addMaxId raised an id.
+	ForceContainer& forces = scene->forces;
+	const long      n      = long(particles.size());
+	if (n == 0) return;
+	forces.addMaxId(Body::id_t(n - 1));
+	forces.sync();
+	// In one thread the sum per body is that of InteractionLoop's: 0 + the thread's sum.
 #ifdef YADE_OPENMP
 #pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies)
 #endif
@@ -1183,8 +1247,8 @@ void PendularLoop::flushForces(int threads)
 			f += threadForce[k][id];
 			t += threadTorque[k][id];
 		}
-		if (f != Vector3r::Zero()) scene->forces.addForce(Body::id_t(id), f);
-		if (t != Vector3r::Zero()) scene->forces.addTorque(Body::id_t(id), t);
+		if (f != Vector3r::Zero()) forces.addForceUnsynced(Body::id_t(id), f);
+		if (t != Vector3r::Zero()) forces.addTorqueUnsynced(Body::id_t(id), t);
 	}
 }
 

@@ -101,12 +101,13 @@ private:
 	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
 	void resolve(Resolved&);
 	void gather(int threads);
-	void step(const shared_ptr<Interaction>& I, const Resolved& r, long& fused, long& dispatchedCount);
 	// The counts of one thread's part of a pass (see nFused, nDispatched, nApart, nRecorded, nBounded).
 	struct Counts {
 		long fused = 0, dispatched = 0, apart = 0, recorded = 0, bounded = 0;
+		int  thread = 0; // the OpenMP thread of this part (its force arrays and lists)
 	};
 	void visit(long i, long ahead1, long ahead2, const Resolved& r, bool skipApart, bool recording, Counts& c);
+	void step(const shared_ptr<Interaction>& I, const Resolved& r, Counts& c);
 	long colliderRunCount() const;
 	void buildWork(bool use, long colliderRuns);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
@@ -124,9 +125,21 @@ private:
 	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute after the distance, in their order of
 	// operations, on an ScGeom or a Record: `normal` the unit vector from centre 1 to centre 2, `depth`
 	// the overlap.
+	// record: the geometry of a Record, whose shearInc is made only when read (see shearIncrement), and
+	// whose rotation axes are computed only for a law with friction (rotation), the only one that uses them.
 	template <class Geom>
 	Rotation sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& shift2,
-	                        const Vector3r& shiftVel, bool isNew, const Resolved& r) const;
+	                        const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record = false, bool rotation = true) const;
+	// ScGeom::shearInc of two spheres in contact as Ig2_Sphere_Sphere_ScGeom makes it (ScGeom::precompute),
+	// from the bodies as a step saw them, the normal, overlap and contact point of that step, and its
+	// Ig2's avoidGranularRatcheting and time step. A record keeps shearInc only while its bridge is
+	// separated (the value of its last step in contact, where Ig2 last updated it): in contact the law
+	// never reads it (it computes the relative velocity itself), so it is made from the bodies when the
+	// objects are (store), and kept when the bridge separates (recordStep, from the step before).
+	static Vector3r shearIncrement(const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& contactPoint,
+	                               const Vector3r& shift2, const Vector3r& shiftVel, bool ratcheting, Real dt);
+	// The shearInc of a record as of its last step, from `seen`, the particles that step read.
+	Vector3r recordShearInc(const Record& rec, const std::vector<Particle>& seen) const;
 	// Our law, inline, on the gathered data, into the thread's force arrays; false: reset the interaction.
 	template <class Geom, class Phys, class Rotate>
 	bool applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const Geom& geom, Phys& phys, const Resolved& r, const Vector3r& shift2,
@@ -144,7 +157,9 @@ private:
 	void forget(int index);
 	// Writes the record into its interaction's objects, made first if the interaction holds the
 	// placeholders; true if they were made.
-	bool store(const Record& rec, Interaction& I) const;
+	// seen: the particles of the record's last step (particles between two steps; previous during a pass).
+	bool store(const Record& rec, Interaction& I, const std::vector<Particle>& seen) const;
+	bool store(const Record& rec, Interaction& I) const { return store(rec, I, particles); }
 	void syncObjects(bool drop, bool all);
 	void freeArrays();
 	template <class Loop, class Visit> static void forEachArray(Loop& loop, Visit&& visit);
@@ -157,6 +172,7 @@ private:
 	bool ownsStep(const Resolved& r) const;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
+	void zeroPerThread(int thread);
 	void flushForces(int threads);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
@@ -180,6 +196,11 @@ private:
 	std::vector<Slot>                  slots;
 	bool                               removeUnseen = false;
 	std::vector<Particle>              particles;
+	// The particles of the pass before (gather swaps the two arrays), and that pass's time step and
+	// Ig2's avoidGranularRatcheting: what the shearInc of a record in contact follows from (shearIncrement).
+	std::vector<Particle>              previous;
+	Real                               seenDt         = 0;
+	bool                               seenRatcheting = true;
 	pendular::BodyPointers             bodyPointers;
 	// The part of a Particle that the check of a potential pair reads, 32 B (two per cache line):
 	// the centre and the radius plus the reach, signed: > 0 a PendularMat sphere of this subdomain,
