@@ -1009,9 +1009,9 @@ bool Law2_ScGeom_PendularPhys_Bridge::go(shared_ptr<IGeom>& ig, shared_ptr<IPhys
 	const State&    de1 = *b1.state;
 	const State&    de2 = *b2.state;
 	const bool      periodic = scene->isPeriodic;
-	const PendularKinematics k { de1.pos, de1.vel, de1.angVel, de2.pos, de2.vel, de2.angVel,
-		                     periodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero(),
-		                     periodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero(),
+	const Vector3r  shift2   = periodic ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero();
+	const Vector3r  shiftVel = periodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
+	const PendularKinematics k { de1.pos, de1.vel, de1.angVel, de2.pos, de2.vel, de2.angVel, shift2, shiftVel,
 		                     pendularOwner(scene->subdomain, b1.subdomain, b2.subdomain), id1, id2 };
 	SceneSink       sink { scene, id1, id2, I->isActive };
 	const ScGeom&   geom   = static_cast<const ScGeom&>(*ig);

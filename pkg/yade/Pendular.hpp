@@ -274,7 +274,7 @@ REGISTER_SERIALIZABLE(PendularCheck);
 // a film-mode bridge reads when it forms and breaks.
 struct PendularKinematics {
 	const Vector3r &pos1, &vel1, &angVel1, &pos2, &vel2, &angVel2;
-	Vector3r        shift2, shiftVel;
+	const Vector3r &shift2, &shiftVel; // references, as the others: a copy per bridge-step cost six stores
 	bool            owned;
 	Body::id_t      id1, id2;
 };
@@ -493,6 +493,25 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		} else if constexpr (full)
 			if (!phys.pending) askFormation(phys, k); // formed by settleFilms at the end of the step
 	}
+	bool twoSpheres = true; // a record is always a sphere-sphere pair
+	if constexpr (full) twoSpheres = !phys.swapped && math::isfinite(phys.R2);
+	bool viscous = false; // the bridge's viscous forces also act in contact, at S_eff = S_min
+	if constexpr (full) viscous = phys.viscous && phys.active;
+	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
+	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0) && !viscous) {
+		// Frictionless between two spheres: a central force, from the overlap and the normal relative
+		// velocity only. The spheres' rotations do not enter it (the arms from the centres to the contact
+		// point lie along the normal, so omega x arm is normal to it), and the force has no moment about
+		// either centre; so no contact point, arms or cross products (their round-off, in the other
+		// branch, gives vn a part of 1e-16 and the spheres round-off torques that spin them).
+		const Real vn = geom.normal.dot(Vector3r(k.vel1 - k.vel2 - k.shiftVel)); // > 0: approaching
+		// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
+		const Real fn      = math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn);
+		phys.shearForce    = Vector3r::Zero(); // the Coulomb cap is 0: no tangential spring or dashpot
+		phys.normalForce   = (fn - phys.Fcap) * geom.normal;
+		sink.force(phys.normalForce);
+		return true;
+	}
 	const Vector3r c1x    = geom.contactPoint - k.pos1;
 	const Vector3r c2x    = geom.contactPoint - k.pos2 - k.shift2;
 	// Body 2's periodic image moves with vel2 + shiftVel (ScGeom::getIncidentVel).
@@ -511,30 +530,20 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		if (shear.squaredNorm() > maxFs * maxFs) shear *= maxFs / shear.norm(); // Coulomb slip: elastic part capped, no viscous part
 		else shearVisc = phys.cs * vs;
 	} else {
-		// Frictionless (Gladkyy2014: particle friction 0): the Coulomb cap is 0, so the tangential
-		// spring and dashpot would be cut to zero anyway; skip them.
+		// Frictionless (Gladkyy2014: particle friction 0) with a wall or facet, or with a viscous
+		// bridge: the Coulomb cap is 0, so the tangential spring and dashpot would be cut to zero anyway.
 		shear = Vector3r::Zero();
 	}
-	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
 	if constexpr (full)
-		if (phys.viscous && phys.active) { // the bridge's viscous forces also act in contact, at S_eff = S_min
+		if (viscous) {
 			const PendularViscousMoments m = pendularViscous(geom, phys, k, -geom.penetrationDepth);
 			phys.normalForce               = (fn - phys.Fcap - phys.Fvisc) * geom.normal;
 			const Vector3r f               = phys.normalForce + shear + shearVisc; // acts at the contact point
 			sink.forceTorque(f + phys.viscousShear, m.torque1 - c1x.cross(f), m.torque2 + c2x.cross(f));
 			return true;
 		}
+	// A wall or facet keeps the moment of the force at the contact point about its own position.
 	phys.normalForce = (fn - phys.Fcap) * geom.normal;
-	bool twoSpheres = true; // a record is always a sphere-sphere pair
-	if constexpr (full) twoSpheres = !phys.swapped && math::isfinite(phys.R2);
-	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0)) {
-		// Frictionless between two spheres: a central force, which has no moment about either centre
-		// (the cross products with the arms along the normal give only round-off, which spins the
-		// spheres and makes every step rotate them). A wall or facet keeps the moment of the force at
-		// the contact point about its own position.
-		sink.force(phys.normalForce);
-		return true;
-	}
 	const Vector3r f = phys.normalForce + shear + shearVisc;
 	sink.forceTorque(f, -c1x.cross(f), c2x.cross(f));
 	return true;

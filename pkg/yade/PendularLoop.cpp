@@ -81,19 +81,20 @@ namespace {
 		Vector3r * forces, *torques;
 		Body::id_t id1, id2;
 		bool       enabled; // Interaction::isActive
-		void       force1(const Vector3r& f) const
+		// Inlined: called once per bridge-step, a call cost more than the six additions.
+		__attribute__((always_inline)) void force1(const Vector3r& f) const
 		{
 			forces[id1] -= f;
 			forces[id2] += f;
 		}
-		void forceTorque(const Vector3r& f, const Vector3r& t1, const Vector3r& t2) const
+		__attribute__((always_inline)) void forceTorque(const Vector3r& f, const Vector3r& t1, const Vector3r& t2) const
 		{
 			if (!enabled) return;
 			force1(f);
 			torques[id1] += t1;
 			torques[id2] += t2;
 		}
-		void force(const Vector3r& f) const
+		__attribute__((always_inline)) void force(const Vector3r& f) const
 		{
 			if (enabled) force1(f);
 		}
@@ -130,7 +131,7 @@ void PendularLoop::resolve(Resolved& r)
 
 void PendularLoop::gather(int threads)
 {
-	const auto&  bodies = *scene->bodies;
+	const auto&  bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
 	const size_t n      = bodies.size();
 	particles.swap(previous); // the last pass's particles stay readable for the records' shearInc (shearIncrement)
 	particles.resize(n);
@@ -159,11 +160,17 @@ void PendularLoop::gather(int threads)
 	// that the bound holds for the radii it was computed with. Films that reach beyond the surface
 	// (formation='films') change every step: no bound then. Checked in the same pass as the gathering.
 	int  restart = epoch.size() != n, films = 0;
+	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
+	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
+	int kindsChanged = previous.size() != n;
+	const Material*           lastMaterial = nullptr;
+	bool                      lastPendular = false;
+	shared_ptr<Material>      heldMaterial;
 	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
 	epoch.resize(n);
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2) \
-        reduction(min : rmin) reduction(| : clumps, aspherical, subdomains)
+#pragma omp parallel for schedule(static) num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) \
+        reduction(min : rmin) reduction(| : clumps, aspherical, subdomains) firstprivate(lastMaterial, lastPendular, heldMaterial)
 #endif
 	for (size_t id = 0; id < n; ++id) {
 		// Two levels: the Body, then, once it is cached, its State and Shape (a sphere's radius is on
@@ -195,8 +202,15 @@ void PendularLoop::gather(int threads)
 			p.subdomain    = b->subdomain;
 			p.radius       = 0;
 			p.reach        = 0;
+			// The material's class, once per run of bodies with the same material (a virtual call per body
+			// otherwise); held while it is the last one, so that no other object can take its address.
+			if (b->material.get() != lastMaterial) {
+				heldMaterial = b->material;
+				lastMaterial = heldMaterial.get();
+				lastPendular = lastMaterial && lastMaterial->getClassIndex() == pendularIndex;
+			}
 			if (b->isClump()) p.kind = clump;
-			else if (!b->shape || !b->material || b->material->getClassIndex() != pendularIndex)
+			else if (!b->shape || !lastPendular)
 				p.kind = other;
 			else {
 				const int shape = b->shape->getClassIndex();
@@ -211,6 +225,7 @@ void PendularLoop::gather(int threads)
 			}
 		}
 		particles[id] = p;
+		if (!kindsChanged) kindsChanged = p.kind != previous[id].kind || p.subdomain != previous[id].subdomain;
 		if (p.kind != pendularSphere) {
 			near[id] = Near { Vector3r::Zero(), 0 };
 			restart  = math::max(restart, int(epoch[id].radius != 0));
@@ -230,6 +245,7 @@ void PendularLoop::gather(int threads)
 	bodyPointers.scene      = scene;
 	const Real move         = math::sqrt(move2);
 	fullCheck               = restart || films || !(move < epochMove * rmin);
+	bodiesKept              = !kindsChanged;
 	if (fullCheck) {
 		epoch             = near;
 		epochDisplacement = 0;
@@ -386,32 +402,31 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 {
 	const auto& interactions = *scene->interactions;
 	// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
-	// cached, the geometry and physics of a real one that has no record.
+	// cached, the bodies of a record or the geometry and physics of a real interaction without one.
+	// Led by the slots alone (a slot that no longer matches its entry prefetches the wrong lines, which
+	// costs nothing but the prefetch; checking costs two more reads per entry).
 	if (ahead2 >= 0) {
 		const Slot& ahead = slots[ahead2];
-		const auto& J     = interactions[ahead2];
-		if (ahead.same(J)) {
-			if (ahead.recorded()) prefetchObject(&records[ahead.record]);
-			else if (!ahead.potential())
-				prefetchObject(J.get());
-		} else
-			prefetchObject(J.get());
+		if (ahead.recorded()) {
+			if (size_t(ahead.record) < records.size()) prefetchObject(&records[ahead.record]);
+		} else if (!ahead.potential())
+			prefetchObject(interactions[ahead2].get());
 	}
 	if (ahead1 >= 0) {
 		const Slot& ahead = slots[ahead1];
-		const auto& J     = interactions[ahead1];
-		if (ahead.same(J)) {
-			if (ahead.record == Slot::none) {
-				if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
-				if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-			} else if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids)
+		if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids; torques only with friction, not prefetched)
+			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
 				prefetchObject(&particles[ahead.id1]);
 				prefetchObject(&particles[ahead.id2]);
 				__builtin_prefetch(&threadForce[c.thread][ahead.id1], 1);
 				__builtin_prefetch(&threadForce[c.thread][ahead.id2], 1);
-				__builtin_prefetch(&threadTorque[c.thread][ahead.id1], 1);
-				__builtin_prefetch(&threadTorque[c.thread][ahead.id2], 1);
-			} else if (skipApart && (fullCheck || !(ahead.gapBound > 2 * epochDisplacement))) { // a potential pair to check: its bodies
+			}
+		} else if (ahead.record == Slot::none) {
+			const auto& J = interactions[ahead1];
+			if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
+			if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
+		} else if (skipApart && (fullCheck || !(ahead.gapBound > 2 * epochDisplacement))) { // a potential pair to check: its bodies
+			if (size_t(math::max(ahead.id1, ahead.id2)) < near.size()) {
 				__builtin_prefetch(&near[ahead.id1]);
 				__builtin_prefetch(&near[ahead.id2]);
 			}
@@ -426,11 +441,13 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 		if (slot.recorded()) {
 			Record& rec = records[slot.record];
 			// The record's bodies (the body container may have shrunk: O.bodies.replace).
-			const bool      exist = size_t(math::max(slot.id1, slot.id2)) < particles.size();
-			const Particle* p1    = exist ? &particles[slot.id1] : nullptr;
-			const Particle* p2    = exist ? &particles[slot.id2] : nullptr;
-			if (exist && p1->kind == pendularSphere && p2->kind == pendularSphere && p1->subdomain == scene->subdomain
-			    && p2->subdomain == scene->subdomain) {
+			// bodiesKept: no body changed since the last pass, in which the record's were such spheres.
+			const auto sphereHere = [this](Body::id_t id) {
+				const Particle& p = particles[id];
+				return p.kind == pendularSphere && p.subdomain == scene->subdomain;
+			};
+			if (bodiesKept
+			    || (size_t(math::max(slot.id1, slot.id2)) < particles.size() && sphereHere(slot.id1) && sphereHere(slot.id2))) {
 				++c.fused;
 				++c.recorded;
 				if (!recordStep(rec, r, c.thread)) {
@@ -685,7 +702,8 @@ namespace {
 	};
 } // namespace
 
-bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
+// Inlined into visit: one call per bridge-step saved (the pass is bound by its instructions, not memory).
+__attribute__((always_inline)) inline bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
 {
 	const Particle& p1     = particles[rec.id1];
 	const Particle& p2     = particles[rec.id2];
@@ -1085,15 +1103,21 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 template <class Geom>
 PendularLoop::Rotation PendularLoop::sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth,
                                                     const Vector3r& shift2, const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record,
-                                                    bool rotation) const
+                                                    bool friction) const
 {
-	geom.contactPoint     = p1.pos + (p1.radius - 0.5 * depth) * normal;
 	geom.penetrationDepth = depth;
-	geom.radius1          = p1.radius;
-	geom.radius2          = p2.radius;
+	// A frictionless record: the law reads the gap and the normal only (the contact point and the radii
+	// of its objects follow from the bodies, see store).
+	if (record && !friction) {
+		geom.normal = normal;
+		return Rotation {};
+	}
+	geom.contactPoint = p1.pos + (p1.radius - 0.5 * depth) * normal;
+	geom.radius1      = p1.radius;
+	geom.radius2      = p2.radius;
 	Rotation axes;
 	if (depth >= 0 || isNew) { // in contact: what the law's tangential spring reads
-		if (!isNew && rotation) {
+		if (!isNew) {
 			axes.orthonormalAxis = geom.normal.cross(normal);
 			const Real angle     = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
 			axes.twistAxis       = angle * geom.normal;

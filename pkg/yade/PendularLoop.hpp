@@ -125,11 +125,11 @@ private:
 	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute after the distance, in their order of
 	// operations, on an ScGeom or a Record: `normal` the unit vector from centre 1 to centre 2, `depth`
 	// the overlap.
-	// record: the geometry of a Record, whose shearInc is made only when read (see shearIncrement), and
-	// whose rotation axes are computed only for a law with friction (rotation), the only one that uses them.
+	// record: the geometry of a Record, whose shearInc is made only when read (see shearIncrement); without
+	// friction the law reads only its gap and normal (no contact point, no rotation axes).
 	template <class Geom>
 	Rotation sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& shift2,
-	                        const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record = false, bool rotation = true) const;
+	                        const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record = false, bool friction = true) const;
 	// ScGeom::shearInc of two spheres in contact as Ig2_Sphere_Sphere_ScGeom makes it (ScGeom::precompute),
 	// from the bodies as a step saw them, the normal, overlap and contact point of that step, and its
 	// Ig2's avoidGranularRatcheting and time step. A record keeps shearInc only while its bridge is
@@ -215,6 +215,8 @@ private:
 	std::vector<Near>                  epoch;
 	Real                               epochDisplacement = 0;
 	bool                               fullCheck         = true;
+	// No body's kind or subdomain changed since the last pass (gather; the records' bodies then need no check).
+	bool                               bodiesKept        = false;
 	Real                               epochRmin         = 0; // the smallest sphere radius of the epoch [m]
 	long                               epochCount        = 0;
 	// The container entries a pass of this epoch may have to visit (see buildWork), and what they were
