@@ -24,6 +24,10 @@ for t in threads:
     base = results[t][0]["particle_steps_per_s"]
     for name, r in zip(NAMES, results[t]):
         print("  %d thread(s)  %-32s %10.3g  (%.2f)" % (t, name, r["particle_steps_per_s"], r["particle_steps_per_s"] / base))
+print("  where the time goes, ours with PendularLoop, ns per step (engines; PendularLoop's phases indented):")
+print("    %-40s %s" % ("", "  ".join("%10s" % ("%d thread(s)" % t) for t in threads)))
+for key in results[threads[0]][2]["phases"]:
+    print("    %-40s %s" % (key, "  ".join("%10.0f" % results[t][2]["phases"][key] for t in threads)))
 for k, name in enumerate(NAMES):
     print("  speed-up from %d threads, %-32s %.2f" % (threads[-1], name, results[threads[-1]][k]["particle_steps_per_s"] / results[1][k]["particle_steps_per_s"]))
 sys.exit(0)

@@ -41,6 +41,12 @@ namespace {
 	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
 	constexpr long passChunk = 256;
 
+	bool sameParticle(const PendularLoop::Particle& a, const PendularLoop::Particle& b)
+	{
+		return a.pos == b.pos && a.vel == b.vel && a.angVel == b.angVel && a.radius == b.radius && a.reach == b.reach && a.subdomain == b.subdomain
+		        && a.kind == b.kind;
+	}
+
 	// The largest float not above x: a lower bound that fits the 32-byte slot.
 	float roundedDown(Real x)
 	{
@@ -224,15 +230,18 @@ void PendularLoop::gather(int threads)
 					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 			}
 		}
-		particles[id] = p;
+		// Written only if changed: a line that the other threads read in a pass is written only after the
+		// other cores' copies are invalidated, which took most of this sweep on two threads; the bodies
+		// that do not move (walls of fixed spheres) then cost a read.
+		if (!sameParticle(particles[id], p)) particles[id] = p;
 		if (!kindsChanged) kindsChanged = p.kind != previous[id].kind || p.subdomain != previous[id].subdomain;
 		if (p.kind != pendularSphere) {
-			near[id] = Near { Vector3r::Zero(), 0 };
+			if (near[id].radius != 0 || near[id].pos != Vector3r::Zero()) near[id] = Near { Vector3r::Zero(), 0 };
 			restart  = math::max(restart, int(epoch[id].radius != 0));
 			continue;
 		}
 		const Near q { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
-		near[id] = q;
+		if (near[id].radius != q.radius || near[id].pos != q.pos) near[id] = q;
 		films    = math::max(films, int(p.reach != 0));
 		rmin     = math::min(rmin, p.radius);
 		restart  = math::max(restart, int(epoch[id].radius != q.radius));

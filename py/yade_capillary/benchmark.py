@@ -173,7 +173,8 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     fused, ours fused with parallelBodies = 20000 in PendularLoop and PendularIntegrator, ours fused
     with YADE's NewtonIntegrator instead of PendularIntegrator)} of dicts: the fourth tells what the
     per-body phases gain from threads at the ci cell's 2 200 bodies (the default, 1000, against 20000), the fifth what
-    PendularIntegrator gains."""
+    PendularIntegrator gains. Each dict also has "phases": ns per step of each engine and of PendularLoop's
+    gathering, pass and force hand-over (O.timingEnabled), the per-phase timings of the run."""
     import json
     import tempfile
 
@@ -202,9 +203,20 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             if parallel_bodies is not None and hasattr(e, "parallelBodies"):
                 e.parallelBodies = parallel_bodies
         O.run(100, True)  # interactions and bridges in place before timing
+        O.timingEnabled = True  # where the time goes (a clock read per engine and step, the same for every variant)
+        for e in O.engines:
+            e.execTime = 0
+        loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
+        if hasattr(loop_engine, "passTime"):
+            loop_engine.gatherTime = loop_engine.passTime = loop_engine.flushTime = 0
         t0 = time.time()
         O.run(steps, True)
-        return {"particle_steps_per_s": len(info["flowing"]) * steps / (time.time() - t0)}
+        out = {"particle_steps_per_s": len(info["flowing"]) * steps / (time.time() - t0), "phases": engine_times(steps)}
+        if hasattr(loop_engine, "passTime"):
+            out["phases"].update({"  gather": loop_engine.gatherTime / steps, "  pass": loop_engine.passTime / steps,
+                                  "  forces": loop_engine.flushTime / steps})
+        O.timingEnabled = False
+        return out
 
     builtin_mat = lambda: ViscElCapMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, Capillar=True,
                                        Vb=liquid["Vb"], gamma=liquid["gamma"], theta=math.degrees(liquid["theta"]), CapillarType="Willett_numeric")
