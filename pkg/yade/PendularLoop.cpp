@@ -1036,7 +1036,7 @@ boost::python::dict PendularLoop::memory() const
 	d["ScGeom"]        = sizeof(ScGeom);
 	d["PendularPhys"]  = sizeof(PendularPhys);
 	d["ViscElCapPhys"] = sizeof(ViscElCapPhys);
-	d["particle"]      = sizeof(Particle);
+	d["particle"]      = 2 * sizeof(Particle); // this step's and the last one's (see previous)
 	d["near"]          = sizeof(Near);
 	d["slot"]          = sizeof(Slot);
 	d["record"]        = sizeof(Record) + sizeof(shared_ptr<Interaction>); // with its entry of recordInteractions

@@ -298,7 +298,7 @@ public:
 		.staticmethod("objectsOf")
 		.def("readersGuarded", &PendularLoop::guardReaders, "Declare that the Python paths that read or change interactions call sync (yade_capillary.objects.guard does it); before, no records are kept.")
 		.staticmethod("readersGuarded")
-		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; a recorded interaction has no ScGeom and PendularPhys of its own unless they are read; invariants: once per distinct set of bridge and contact parameters, with its prototype physics, PendularPhys) and of its per-body arrays (particle: gathered body data; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
+		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; a recorded interaction has no ScGeom and PendularPhys of its own unless they are read; invariants: once per distinct set of bridge and contact parameters, with its prototype physics, PendularPhys) and of its per-body arrays (particle: gathered body data of this step and the last; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
 	);
 	// clang-format on
 };
