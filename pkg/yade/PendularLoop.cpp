@@ -140,8 +140,9 @@ void PendularLoop::gather(int threads)
 	const auto&  bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
 	const size_t n      = bodies.size();
 	particles.swap(previous); // the last pass's particles stay readable for the records' shearInc (shearIncrement)
-	particles.resize(n);
-	near.resize(n);
+	// New entries defined: the sweep compares before it writes.
+	particles.resize(n, Particle { Vector3r::Zero(), Vector3r::Zero(), Vector3r::Zero(), 0, 0, 0, missing });
+	near.resize(n, Near { Vector3r::Zero(), 0 });
 	for (auto& f : threadForce)
 		f.resize(n);
 	for (auto& t : threadTorque)
@@ -168,7 +169,9 @@ void PendularLoop::gather(int threads)
 	int  restart = epoch.size() != n, films = 0;
 	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
 	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
-	int kindsChanged = previous.size() != n;
+	// (A reduction's private copies start at its identity, not at this value: every iteration computes its part.)
+	int        kindsChanged = 0;
+	const bool comparable   = previous.size() == n;
 	const Material*           lastMaterial = nullptr;
 	bool                      lastPendular = false;
 	shared_ptr<Material>      heldMaterial;
@@ -192,9 +195,7 @@ void PendularLoop::gather(int threads)
 			threadForce[0][id]  = Vector3r::Zero();
 			threadTorque[0][id] = Vector3r::Zero();
 		}
-		// Made in registers and stored once: reading back a Particle just stored field by field stalls
-		// on a line that another thread read in the last pass (with two threads that stall was most of
-		// the gathering's time).
+		// Made in registers, stored once and only if changed (below).
 		Particle    p;
 		const auto& b = bodies[id];
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
@@ -234,7 +235,7 @@ void PendularLoop::gather(int threads)
 		// other cores' copies are invalidated, which took most of this sweep on two threads; the bodies
 		// that do not move (walls of fixed spheres) then cost a read.
 		if (!sameParticle(particles[id], p)) particles[id] = p;
-		if (!kindsChanged) kindsChanged = p.kind != previous[id].kind || p.subdomain != previous[id].subdomain;
+		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != previous[id].kind || p.subdomain != previous[id].subdomain));
 		if (p.kind != pendularSphere) {
 			if (near[id].radius != 0 || near[id].pos != Vector3r::Zero()) near[id] = Near { Vector3r::Zero(), 0 };
 			restart  = math::max(restart, int(epoch[id].radius != 0));

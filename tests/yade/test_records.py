@@ -18,6 +18,9 @@
 # - A record keeps no shear increment in contact (the law does not read it): ScGeom.shearInc is made from
 #   the bodies when the objects are, and kept from the last step in contact when the bridge separates;
 #   read from Python it equals the run without records, for separated bridges too (section 5).
+# - A recorded interaction whose body is no longer a PendularMat sphere of the scene's subdomain leaves the
+#   records at the next step (section 6: the loop checks the records' bodies only after a body changed
+#   kind or subdomain).
 import os
 import tempfile
 import time
@@ -151,5 +154,20 @@ for friction in (0.3, 0.0):
     ck.true(reads[True][2] > 0 and reads[True][1] > 20 and reads[True][0] == reads[False][0],
             "friction %g: shearInc of every sphere-sphere interaction at 8 reads (%d of separated bridges, kept from their last step in "
             "contact) bit-identical with records (%d recorded) and without" % (friction, reads[True][1], reads[True][2]))
+
+# 6. A sphere moved to another subdomain from Python: its interactions leave the records at the next step
+#    (they are recorded only between bodies of the scene's subdomain), as the first step of a new loop sees it.
+build()
+O.engines = scene.engines(gravity=(0, 0, -9.81), integrator="newton")  # PendularIntegrator refuses other subdomains
+loop = next(e for e in O.engines if isinstance(e, InteractionLoop))
+O.run(100, True)
+moved = max(sphere_pairs(), key=lambda pair: pair[0])[0]
+before = sphere_pairs()
+O.bodies[moved].subdomain = 1
+O.run(1, True)
+expected = len([pair for pair in before if moved not in pair])
+ck.true(len(before) > expected and loop.nRecorded == expected,
+        "a sphere moved to subdomain 1: %d interactions computed from records in the next step, %d expected (%d before, %d of them "
+        "with the moved sphere)" % (loop.nRecorded, expected, len(before), len(before) - expected))
 
 ck.finish()
