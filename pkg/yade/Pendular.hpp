@@ -498,15 +498,15 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	bool viscous = false; // the bridge's viscous forces also act in contact, at S_eff = S_min
 	if constexpr (full) viscous = phys.viscous && phys.active;
 	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
+	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007). vn > 0: approaching.
+	const auto springDashpot = [&phys, &geom](Real vn) { return math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn); };
 	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0) && !viscous) {
 		// Frictionless between two spheres: a central force, from the overlap and the normal relative
 		// velocity only. The spheres' rotations do not enter it (the arms from the centres to the contact
 		// point lie along the normal, so omega x arm is normal to it), and the force has no moment about
 		// either centre; so no contact point, arms or cross products (their round-off, in the other
 		// branch, gives vn a part of 1e-16 and the spheres round-off torques that spin them).
-		const Real vn = geom.normal.dot(Vector3r(k.vel1 - k.vel2 - k.shiftVel)); // > 0: approaching
-		// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
-		const Real fn      = math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn);
+		const Real fn      = springDashpot(geom.normal.dot(Vector3r(k.vel1 - k.vel2 - k.shiftVel)));
 		phys.shearForce    = Vector3r::Zero(); // the Coulomb cap is 0: no tangential spring or dashpot
 		phys.normalForce   = (fn - phys.Fcap) * geom.normal;
 		sink.force(phys.normalForce);
@@ -516,10 +516,8 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	const Vector3r c2x    = geom.contactPoint - k.pos2 - k.shift2;
 	// Body 2's periodic image moves with vel2 + shiftVel (ScGeom::getIncidentVel).
 	const Vector3r relVel = (k.vel1 + k.angVel1.cross(c1x)) - (k.vel2 + k.angVel2.cross(c2x)) - k.shiftVel;
-	const Real     vn     = geom.normal.dot(relVel); // > 0: approaching
-
-	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007).
-	const Real fn = math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn);
+	const Real     vn     = geom.normal.dot(relVel);
+	const Real     fn     = springDashpot(vn);
 	Vector3r&  shear = phys.shearForce;
 	Vector3r   shearVisc = Vector3r::Zero();
 	if (phys.tangensOfFrictionAngle > 0) {

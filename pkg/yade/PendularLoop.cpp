@@ -452,10 +452,6 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			Record& rec = records[slot.record];
 			// The record's bodies (the body container may have shrunk: O.bodies.replace).
 			// bodiesKept: no body changed since the last pass, in which the record's were such spheres.
-			const auto sphereHere = [this](Body::id_t id) {
-				const Particle& p = particles[id];
-				return p.kind == pendularSphere && p.subdomain == scene->subdomain;
-			};
 			if (bodiesKept
 			    || (size_t(math::max(slot.id1, slot.id2)) < particles.size() && sphereHere(slot.id1) && sphereHere(slot.id2))) {
 				++c.fused;
@@ -575,8 +571,7 @@ bool PendularLoop::ownsStep(const Resolved&) const
 // inviscid bridge (or none) on ScGeom, with valid contact parameters.
 bool PendularLoop::recordable(const Interaction& I, const Resolved& r) const
 {
-	if (!r.fused || particles[I.getId1()].kind != pendularSphere || particles[I.getId2()].kind != pendularSphere) return false;
-	if (particles[I.getId1()].subdomain != scene->subdomain || particles[I.getId2()].subdomain != scene->subdomain) return false;
+	if (!r.fused || !sphereHere(I.getId1()) || !sphereHere(I.getId2())) return false;
 	if (!I.geom || !I.phys || typeid(*I.geom) != typeid(ScGeom) || typeid(*I.phys) != typeid(PendularPhys)) return false;
 	const auto& phys = static_cast<const PendularPhys&>(*I.phys);
 	return !phys.film && !phys.viscous && phys.kn > 0;
@@ -676,7 +671,7 @@ bool PendularLoop::store(const Record& rec, Interaction& I, const std::vector<Pa
 	geom.penetrationDepth = rec.penetrationDepth;
 	if (size_t(math::max(rec.id1, rec.id2)) < seen.size()) {
 		const Particle& p1 = seen[rec.id1];
-		geom.contactPoint  = p1.pos + (p1.radius - 0.5 * rec.penetrationDepth) * rec.normal;
+		geom.contactPoint  = contactPointOf(p1, rec.normal, rec.penetrationDepth);
 		geom.radius1       = p1.radius;
 		geom.radius2       = seen[rec.id2].radius;
 	} else if (make) { // a body that is gone: nothing to complete the new object from
@@ -1122,7 +1117,7 @@ PendularLoop::Rotation PendularLoop::sphereGeometry(Geom& geom, const Particle& 
 		geom.normal = normal;
 		return Rotation {};
 	}
-	geom.contactPoint = p1.pos + (p1.radius - 0.5 * depth) * normal;
+	geom.contactPoint = contactPointOf(p1, normal, depth);
 	geom.radius1      = p1.radius;
 	geom.radius2      = p2.radius;
 	Rotation axes;
@@ -1161,7 +1156,7 @@ Vector3r PendularLoop::recordShearInc(const Record& rec, const std::vector<Parti
 {
 	if (!(rec.penetrationDepth >= 0) || size_t(math::max(rec.id1, rec.id2)) >= seen.size()) return rec.shearInc;
 	const Particle& p1           = seen[rec.id1];
-	const Vector3r  contactPoint = p1.pos + (p1.radius - 0.5 * rec.penetrationDepth) * rec.normal;
+	const Vector3r  contactPoint = contactPointOf(p1, rec.normal, rec.penetrationDepth);
 	const Vector3r  zero         = Vector3r::Zero();
 	return shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, seenRatcheting, seenDt);
 }

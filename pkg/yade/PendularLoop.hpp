@@ -147,6 +147,15 @@ private:
 	// One step of a recorded interaction; false: reset it.
 	bool recordStep(Record& rec, const Resolved& r, int thread);
 	bool recordable(const Interaction& I, const Resolved& r) const;
+	// A body that records may join: a PendularMat sphere of this scene's subdomain (as gathered this step).
+	bool sphereHere(Body::id_t id) const
+	{
+		const Particle& p = particles[id];
+		return p.kind == pendularSphere && p.subdomain == scene->subdomain;
+	}
+	// Ig2_Sphere_Sphere_ScGeom's contact point: from the centre of body 1 along the normal, at its radius
+	// less half the overlap.
+	static Vector3r contactPointOf(const Particle& p1, const Vector3r& normal, Real depth) { return p1.pos + (p1.radius - 0.5 * depth) * normal; }
 	void load(Record& rec, const shared_ptr<Interaction>& I);
 	int  invariantsOf(const PendularPhys& phys);
 	static std::string invariantsKey(const PendularPhys& phys);
