@@ -298,6 +298,16 @@ struct Bridge {
 // computes the invariants.
 Bridge make_bridge(const BridgeSpec& spec);
 
+// The force of the bridge's model at a > 0 (0 without a model). By index rather than std::visit, which
+// libstdc++ makes an indirect call through a table per bridge-step: a chain of compares on the index
+// lets the compiler inline the force of each model.
+template <std::size_t... I> inline double force_by_index(const Models::Variant& m, double a, std::index_sequence<I...>)
+{
+	double f = 0;
+	(void)((m.index() == I + 1 && (f = std::get_if<I + 1>(&m)->force(a), true)) || ...);
+	return f;
+}
+
 // Capillary force [N] at gap a [m] of a bridge that lasts up to the gap `range` [m]: 0 for a > range
 // (and a NaN gap), F(0) for a <= 0. range = b.rupture is the static bridge (bridge_force). A longer
 // range is the dynamic rupture rule (Elskamp2018 eq. 33): between the static rupture distance and
@@ -310,12 +320,7 @@ inline double bridge_force_within(const Bridge& b, double a, double range)
 {
 	if (!(a <= range)) return 0;
 	if (a <= 0) return b.force0;
-	const double f = std::visit(
-	        [a](const auto& model) -> double {
-		        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, std::monostate>) return 0;
-		        else return model.force(a);
-	        },
-	        b.m);
+	const double f = force_by_index(b.m, a, std::make_index_sequence<std::variant_size_v<Models::Variant> - 1>());
 	return a <= b.rupture ? f : std::min(std::max(f, 0.0), b.force_rupture);
 }
 // Capillary force [N] at gap a [m]: 0 for a > rupture (and a NaN gap), F(0) for a <= 0.

@@ -506,7 +506,9 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		// point lie along the normal, so omega x arm is normal to it), and the force has no moment about
 		// either centre; so no contact point, arms or cross products (their round-off, in the other
 		// branch, gives vn a part of 1e-16 and the spheres round-off torques that spin them).
-		const Real fn      = springDashpot(geom.normal.dot(Vector3r(k.vel1 - k.vel2 - k.shiftVel)));
+		// By component: GCC leaves Eigen's assignment loop of this expression out of line (a call per bridge-step).
+		const Vector3r dv(k.vel1[0] - k.vel2[0] - k.shiftVel[0], k.vel1[1] - k.vel2[1] - k.shiftVel[1], k.vel1[2] - k.vel2[2] - k.shiftVel[2]);
+		const Real     fn = springDashpot(geom.normal.dot(dv));
 		phys.shearForce    = Vector3r::Zero(); // the Coulomb cap is 0: no tangential spring or dashpot
 		phys.normalForce   = (fn - phys.Fcap) * geom.normal;
 		sink.force(phys.normalForce);
