@@ -60,14 +60,13 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, rec
     phases = hasattr(O.engines[2], "passTime")
     if phases:
         O.engines[2].gatherTime = O.engines[2].passTime = O.engines[2].flushTime = 0
-    intr_steps, t0 = 0, time.time()
+    intr_steps, wall = 0, 0.0
     done = 0
     while done < steps:
         count = O.interactions.countReal()
-        O.run(chunk, True)
+        wall += timed_steps(chunk)
         intr_steps += chunk * (count + O.interactions.countReal()) / 2
         done += chunk
-    wall = time.time() - t0
     loop_ns = O.engines[2].execTime
     O.timingEnabled = False
     out = {"law": label, "interactions": O.interactions.countReal(), "ns_per_bridge_step": loop_ns / intr_steps,
@@ -162,6 +161,20 @@ def memory():
     return dict(PendularLoop().memory())
 
 
+def timed_steps(n, poll=1e-3):
+    """Run n steps of O (O.run, in YADE's simulation thread); returns the wall time [s], to within `poll`
+    [s]. Not O.run(n, True): its wait returns at the first of its 40 ms polls after the last step
+    (measured on this machine: 40.3 ms for O.run(1, True) without engines), which added 0-40 ms at
+    random to every timed run (8 % of a 2000-step ci-cell run on two threads). Nor O.step() in a loop:
+    the steps then run in Python's main thread, where this machine ran PendularLoop's pass 10 % slower
+    (16^3 packing, one thread)."""
+    t0 = time.perf_counter()
+    O.run(n)
+    while O.running:
+        time.sleep(poll)
+    return time.perf_counter() - t0
+
+
 def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None, threads=(1,)):
     """The prepared shear cell rotating, with YADE's built-in law (Willett_numeric) and with ours
     (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
@@ -209,9 +222,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
         loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
         if hasattr(loop_engine, "passTime"):
             loop_engine.gatherTime = loop_engine.passTime = loop_engine.flushTime = 0
-        t0 = time.time()
-        O.run(steps, True)
-        out = {"particle_steps_per_s": len(info["flowing"]) * steps / (time.time() - t0), "phases": engine_times(steps)}
+        out = {"particle_steps_per_s": len(info["flowing"]) * steps / timed_steps(steps), "phases": engine_times(steps)}
         if hasattr(loop_engine, "passTime"):
             out["phases"].update({"  gather": loop_engine.gatherTime / steps, "  pass": loop_engine.passTime / steps,
                                   "  forces": loop_engine.flushTime / steps})
@@ -282,9 +293,7 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
         mode = modes[k % len(modes)]
         if fused is not None:
             fused.keepRecords, fused.skipFar = mode
-        t0 = time.time()
-        O.run(n, True)
-        wall[mode] += time.time() - t0
+        wall[mode] += timed_steps(n)
         done[mode] += n
         k += 1
     O.timingEnabled = False
