@@ -254,15 +254,15 @@ void PendularLoop::gather(int threads)
 	bodyPointers.iter       = scene->iter;
 	bodyPointers.scene      = scene;
 	const Real move         = math::sqrt(move2);
-	fullCheck               = restart || films || !(move < epochMove * rmin);
-	bodiesKept              = !kindsChanged;
-	if (fullCheck) {
-		epoch             = near;
-		epochDisplacement = 0;
-		epochRmin         = rmin;
-		++epochCount;
+	known.fullCheck         = restart || films || !(move < epochMove * rmin);
+	known.bodiesKept        = !kindsChanged;
+	if (known.fullCheck) {
+		epoch                   = near;
+		known.epochDisplacement = 0;
+		known.epochRmin         = rmin;
+		++known.epochCount;
 	} else
-		epochDisplacement = math::max(epochDisplacement, move);
+		known.epochDisplacement = math::max(known.epochDisplacement, move);
 }
 
 void PendularLoop::action()
@@ -286,16 +286,17 @@ void PendularLoop::action()
 	// Handed back before the gathering: what the objects get from the records is completed from the
 	// bodies as the records' last step saw them (store).
 	const bool recording = recordsAllowed(r);
-	if (!records.empty() && (!recording || recordScene != scene)) syncObjects(true, true);
-	recordScene = scene;
-	loopThread  = std::this_thread::get_id();
+	if (!records.empty() && (!recording || known.recordScene != scene)) syncObjects(true, true);
+	known.recordScene       = scene;
+	loopThread              = std::this_thread::get_id();
 	const long colliderRuns = colliderRunCount();
 	if (liveRecords() > 0
-	    && (colliderRuns != reconciledRuns || scene->interactions.get() != reconciledContainer || scene->interactions->size() != reconciledSize))
+	    && (colliderRuns != known.reconciledRuns || scene->interactions.get() != known.reconciledContainer
+	        || scene->interactions->size() != known.reconciledSize))
 		reconcile();
-	reconciledRuns      = colliderRuns;
-	reconciledContainer = scene->interactions.get();
-	reconciledSize      = scene->interactions->size();
+	known.reconciledRuns      = colliderRuns;
+	known.reconciledContainer = scene->interactions.get();
+	known.reconciledSize      = scene->interactions->size();
 	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
 		const auto ts = Clock::now();
 		sortInteractions();
@@ -327,8 +328,8 @@ void PendularLoop::action()
 	// sorting, another scene. Behind that, the first and last entries must be the interactions of the
 	// last pass (an erasure moves the last entry into its hole, an insertion appends: erasing and
 	// inserting one keeps the size, not the last entry).
-	const bool fast = skipFar && recording && skipApart && !fullCheck && workValid && workEpoch == epochCount && workColliderRuns == colliderRuns
-	        && workContainer == scene->interactions.get() && long(workSize) == size
+	const bool fast = skipFar && recording && skipApart && !known.fullCheck && workValid && known.workEpoch == known.epochCount
+	        && known.workColliderRuns == colliderRuns && known.workContainer == scene->interactions.get() && long(known.workSize) == size
 	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
 	long       disorder = 0;
 	const long m        = fast ? long(work.size()) : size;
@@ -387,18 +388,18 @@ void PendularLoop::action()
 		++nFastPasses;
 		disorder = nDisorder; // the container's order has not changed
 	}
-	nDisorder     = disorder;
-	sortPending   = sortDisorder > 0 && Real(disorder) > sortDisorder * Real(size);
-	nFused        = fused;
-	nDispatched   = dispatchedCount;
-	nApart        = apart;
-	nRecorded     = recorded;
-	nBounded      = bounded;
-	seenDt         = scene->dt; // what the records' shearInc now follows from (recordShearInc)
-	seenRatcheting = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
+	nDisorder            = disorder;
+	sortPending          = sortDisorder > 0 && Real(disorder) > sortDisorder * Real(size);
+	nFused               = fused;
+	nDispatched          = dispatchedCount;
+	nApart               = apart;
+	nRecorded            = recorded;
+	nBounded             = bounded;
+	known.seenDt         = scene->dt; // what the records' shearInc now follows from (recordShearInc)
+	known.seenRatcheting = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
 	settleRecords();
 	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns);
-	stale         = liveRecords() > 0;
+	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
 	flushForces(threads);
 	gatherTime += ns(t0, t1);
@@ -435,7 +436,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			const auto& J = interactions[ahead1];
 			if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
 			if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-		} else if (skipApart && (fullCheck || !(ahead.gapBound > 2 * epochDisplacement))) { // a potential pair to check: its bodies
+		} else if (skipApart && (known.fullCheck || !(ahead.gapBound > 2 * known.epochDisplacement))) { // a potential pair to check: its bodies
 			if (size_t(math::max(ahead.id1, ahead.id2)) < near.size()) {
 				__builtin_prefetch(&near[ahead.id1]);
 				__builtin_prefetch(&near[ahead.id2]);
@@ -452,7 +453,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			Record& rec = records[slot.record];
 			// The record's bodies (the body container may have shrunk: O.bodies.replace).
 			// bodiesKept: no body changed since the last pass, in which the record's were such spheres.
-			if (bodiesKept
+			if (known.bodiesKept
 			    || (size_t(math::max(slot.id1, slot.id2)) < particles.size() && sphereHere(slot.id1) && sphereHere(slot.id2))) {
 				++c.fused;
 				++c.recorded;
@@ -472,7 +473,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			// A potential interaction of two PendularMat spheres seen in an earlier step (same object, so
 			// the same ids; it became real only in this loop, which updates the slot). Apart by more than
 			// the bodies can have moved since its last check: nothing to read but the slot (see gather).
-			if (!fullCheck && slot.gapBound > 2 * epochDisplacement) {
+			if (!known.fullCheck && slot.gapBound > 2 * known.epochDisplacement) {
 				++c.fused;
 				++c.apart;
 				++c.bounded;
@@ -485,7 +486,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
 				const Real d2   = (q2.pos - q1.pos).squaredNorm();
 				if (d2 > sumR * sumR) {
-					slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * epochDisplacement);
+					slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * known.epochDisplacement);
 					++c.fused;
 					++c.apart;
 					return;
@@ -527,16 +528,16 @@ void PendularLoop::buildWork(bool use, long colliderRuns)
 	const long  size         = long(scene->interactions->size());
 	// gather ends an epoch unless move < epochMove * rmin, the same product: each skipped slot has
 	// gapBound >= 2 (epochMove rmin) > 2 epochDisplacement at every step of the epoch.
-	const Real threshold = 2 * (epochMove * epochRmin);
+	const Real threshold = 2 * (epochMove * known.epochRmin);
 	for (long i = 0; i < size; ++i) {
 		const Slot& slot = slots[i];
 		if (slot.potential() && slot.same(interactions[i]) && Real(slot.gapBound) >= threshold) continue;
 		work.push_back(i);
 	}
-	workEpoch        = epochCount;
-	workColliderRuns = colliderRuns;
-	workContainer    = scene->interactions.get();
-	workSize         = size_t(size);
+	known.workEpoch        = known.epochCount;
+	known.workColliderRuns = colliderRuns;
+	known.workContainer    = scene->interactions.get();
+	known.workSize         = size_t(size);
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the
@@ -771,9 +772,9 @@ void PendularLoop::dropObjects()
 		const bool fromPython = boost::get_deleter<boost::python::converter::shared_ptr_deleter>(I->geom)
 		        || boost::get_deleter<boost::python::converter::shared_ptr_deleter>(I->phys);
 		if (!fromPython && I->geom.use_count() == 1 && I->phys.use_count() == 1) {
-			I->geom      = placeholderGeom();
-			I->phys      = placeholderPhys();
-			placeholders = true;
+			I->geom            = placeholderGeom();
+			I->phys            = placeholderPhys();
+			known.placeholders = true;
 		} else
 			withObjects[kept++] = index; // held by Python: written by the next sync
 	}
@@ -878,16 +879,16 @@ void PendularLoop::sortInteractions()
 
 void PendularLoop::syncObjects(bool drop, bool all)
 {
-	if ((all || drop) && (stale || placeholders)) { // else nothing to write (a loop of Python calls asks at every call)
+	if ((all || drop) && (known.stale || known.placeholders)) { // else nothing to write (a loop of Python calls asks at every call)
 		for (size_t index = 0; index < records.size(); ++index) {
 			const auto& I = recordInteractions[index];
-			if (I && (stale || holdsPlaceholders(*I)) && store(records[index], *I)) withObjects.push_back(int(index));
+			if (I && (known.stale || holdsPlaceholders(*I)) && store(records[index], *I)) withObjects.push_back(int(index));
 		}
-		placeholders = false;
-	} else if (!(all || drop) && stale)
+		known.placeholders = false;
+	} else if (!(all || drop) && known.stale)
 		for (const int index : withObjects)
 			if (recordInteractions[index]) store(records[index], *recordInteractions[index]);
-	stale = false;
+	known.stale = false;
 	if (!drop) return;
 	workValid = false;
 	records.clear();
@@ -952,17 +953,9 @@ void PendularLoop::freeArrays()
 	forEachArray(*this, [](auto& v) { freeVector(v); });
 	invariantsIndex = {};
 	// As a new loop: the gathering starts an epoch (epoch is empty), the pass visits every entry.
-	bodyPointers.scene  = nullptr;
-	workValid           = false;
-	workContainer       = nullptr;
-	workSize            = 0;
-	fullCheck           = true;
-	epochDisplacement   = 0;
-	reconciledRuns      = -1;
-	reconciledContainer = nullptr;
-	reconciledSize      = 0;
-	recordScene         = nullptr;
-	stale = placeholders = false;
+	known              = Known {};
+	workValid          = false;
+	bodyPointers.scene = nullptr;
 }
 
 void PendularLoop::releaseScene(Scene* scene)
@@ -1158,7 +1151,7 @@ Vector3r PendularLoop::recordShearInc(const Record& rec, const std::vector<Parti
 	const Particle& p1           = seen[rec.id1];
 	const Vector3r  contactPoint = contactPointOf(p1, rec.normal, rec.penetrationDepth);
 	const Vector3r  zero         = Vector3r::Zero();
-	return shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, seenRatcheting, seenDt);
+	return shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, known.seenRatcheting, known.seenDt);
 }
 
 template <class Geom, class Phys, class Rotate>

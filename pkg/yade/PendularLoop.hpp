@@ -205,11 +205,9 @@ private:
 	std::vector<Slot>                  slots;
 	bool                               removeUnseen = false;
 	std::vector<Particle>              particles;
-	// The particles of the pass before (gather swaps the two arrays), and that pass's time step and
-	// Ig2's avoidGranularRatcheting: what the shearInc of a record in contact follows from (shearIncrement).
+	// The particles of the pass before (gather swaps the two arrays): with Known::seenDt and
+	// seenRatcheting, what the shearInc of a record in contact follows from (shearIncrement).
 	std::vector<Particle>              previous;
-	Real                               seenDt         = 0;
-	bool                               seenRatcheting = true;
 	pendular::BodyPointers             bodyPointers;
 	// The part of a Particle that the check of a potential pair reads, 32 B (two per cache line):
 	// the centre and the radius plus the reach, signed: > 0 a PendularMat sphere of this subdomain,
@@ -219,22 +217,41 @@ private:
 		Real     radius;
 	};
 	std::vector<Near>                  near;
-	// near at the start of the epoch of the bound on potential pairs' gaps, and the largest distance
-	// a body has moved since [m] (see gather); fullCheck: every potential pair is checked this step.
+	// near at the start of the epoch of the bound on potential pairs' gaps (see gather).
 	std::vector<Near>                  epoch;
-	Real                               epochDisplacement = 0;
-	bool                               fullCheck         = true;
-	// No body's kind or subdomain changed since the last pass (gather; the records' bodies then need no check).
-	bool                               bodiesKept        = false;
-	Real                               epochRmin         = 0; // the smallest sphere radius of the epoch [m]
-	long                               epochCount        = 0;
-	// The container entries a pass of this epoch may have to visit (see buildWork), and what they were
-	// built for: the epoch, the collider's runs, the container and its size.
+	// The container entries a pass of this epoch may have to visit (see buildWork; valid: Known says
+	// what for). Atomic: the wrapped Python paths drop it from other threads.
 	std::vector<long>                  work;
 	std::atomic<bool>                  workValid { false };
-	long                               workEpoch = -1, workColliderRuns = -1;
-	const InteractionContainer*        workContainer = nullptr;
-	size_t                             workSize      = 0;
+	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
+	// freed (freeArrays) starts again from these values, as a new loop.
+	struct Known {
+		// The bound on potential pairs' gaps (see gather): the largest distance a body has moved since
+		// the start of the epoch [m], the smallest sphere radius of the epoch [m] and the epoch's number;
+		// fullCheck: every potential pair is checked this step.
+		Real epochDisplacement = 0, epochRmin = 0;
+		long epochCount        = 0;
+		bool fullCheck         = true;
+		// No body's kind or subdomain changed since the last pass (the records' bodies then need no check).
+		bool bodiesKept = false;
+		// What work was built for: the epoch, the collider's runs, the container and its size.
+		long                        workEpoch = -1, workColliderRuns = -1;
+		const InteractionContainer* workContainer = nullptr;
+		size_t                      workSize      = 0;
+		// The collider's runs and the container the slots of the records were last matched to (reconcile).
+		long                        reconciledRuns      = -1;
+		const InteractionContainer* reconciledContainer = nullptr;
+		size_t                      reconciledSize      = 0;
+		// The last pass's time step and Ig2's avoidGranularRatcheting (see previous).
+		Real seenDt         = 0;
+		bool seenRatcheting = true;
+		// The scene of the records; stale: the records are newer than the objects; placeholders: some
+		// recorded interaction may hold the placeholders.
+		Scene* recordScene  = nullptr;
+		bool   stale        = false;
+		bool   placeholders = false;
+	};
+	Known                              known;
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
@@ -250,16 +267,9 @@ private:
 	std::unordered_map<std::string, int>           invariantsIndex;
 	std::vector<int>                               freeRecords, freeInvariants;
 	std::vector<int>                               withObjects;
-	// The collider's runs and the container the slots of the records were last matched to (reconcile).
-	long                                           reconciledRuns      = -1;
-	const InteractionContainer*                    reconciledContainer = nullptr;
-	size_t                                         reconciledSize      = 0;
 	long liveRecords() const { return long(records.size()) - long(freeRecords.size()); }
 	std::vector<std::vector<long>>                 toRecord;   // per thread: container entries to record after the pass
 	std::vector<std::vector<int>>                  toForget;   // per thread: records to free after the pass
-	bool                                           stale = false; // the records are newer than the objects
-	bool                                           placeholders = false; // some recorded interaction may hold the placeholders
-	Scene*                                         recordScene = nullptr;
 	std::thread::id                                loopThread;
 	Matrix3r                           cellHsize = Matrix3r::Zero();
 
