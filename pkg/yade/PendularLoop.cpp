@@ -41,10 +41,12 @@ namespace {
 	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
 	constexpr long passChunk = 256;
 
-	bool sameParticle(const PendularLoop::Particle& a, const PendularLoop::Particle& b)
+	// What the gathering writes of a body, written only if changed: a line that the other threads read in
+	// a pass is written only after the other cores' copies are invalidated, which took most of the
+	// gathering on two threads; the bodies that do not move (walls, fixed spheres) then cost a read.
+	template <class T> void storeChanged(T& stored, const T& value)
 	{
-		return a.pos == b.pos && a.vel == b.vel && a.angVel == b.angVel && a.radius == b.radius && a.reach == b.reach && a.subdomain == b.subdomain
-		        && a.kind == b.kind;
+		if (!(stored == value)) stored = value;
 	}
 
 	// The largest float not above x: a lower bound that fits the 32-byte slot.
@@ -147,9 +149,7 @@ void PendularLoop::gather(int threads)
 		f.resize(n);
 	for (auto& t : threadTorque)
 		t.resize(n);
-	// One thread: its force arrays are zeroed in this sweep (one sweep over the bodies fewer). Several:
-	// each thread zeroes its own at the start of the pass (zeroPerThread), in its own cache.
-	const bool zeroHere = threadForce.size() == 1;
+	const bool zeroHere = forcesZeroedInGather();
 	bodyPointers.scene = nullptr; // valid once the pass is complete
 	bodyPointers.states.resize(n);
 	bodyPointers.bounds.resize(n);
@@ -231,18 +231,15 @@ void PendularLoop::gather(int threads)
 					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 			}
 		}
-		// Written only if changed: a line that the other threads read in a pass is written only after the
-		// other cores' copies are invalidated, which took most of this sweep on two threads; the bodies
-		// that do not move (walls of fixed spheres) then cost a read.
-		if (!sameParticle(particles[id], p)) particles[id] = p;
+		storeChanged(particles[id], p);
 		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != previous[id].kind || p.subdomain != previous[id].subdomain));
 		if (p.kind != pendularSphere) {
-			if (near[id].radius != 0 || near[id].pos != Vector3r::Zero()) near[id] = Near { Vector3r::Zero(), 0 };
+			storeChanged(near[id], Near { Vector3r::Zero(), 0 });
 			restart  = math::max(restart, int(epoch[id].radius != 0));
 			continue;
 		}
 		const Near q { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
-		if (near[id].radius != q.radius || near[id].pos != q.pos) near[id] = q;
+		storeChanged(near[id], q);
 		films    = math::max(films, int(p.reach != 0));
 		rmin     = math::min(rmin, p.radius);
 		restart  = math::max(restart, int(epoch[id].radius != q.radius));
@@ -1234,7 +1231,7 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 // with two threads.
 void PendularLoop::zeroPerThread(int thread)
 {
-	if (threadForce.size() == 1) return; // zeroed by the gathering
+	if (forcesZeroedInGather()) return;
 #ifdef YADE_OPENMP
 	const size_t stride = size_t(omp_get_num_threads());
 #else

@@ -26,6 +26,11 @@ public:
 		Real     reach; // film thickness of a sphere whose bridges form when the films touch (formation='films'), else 0
 		int      subdomain;
 		uint8_t  kind;
+		bool     operator==(const Particle& o) const
+		{
+			return pos == o.pos && vel == o.vel && angVel == o.angVel && radius == o.radius && reach == o.reach && subdomain == o.subdomain
+			        && kind == o.kind;
+		}
 	};
 	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
 
@@ -181,6 +186,9 @@ private:
 	bool ownsStep(const Resolved& r) const;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
+	// One thread: its force arrays are zeroed in the gathering's sweep (one sweep over the bodies fewer).
+	// Several: each thread zeroes its own at the start of the pass (zeroPerThread), in its own cache.
+	bool forcesZeroedInGather() const { return threadForce.size() == 1; }
 	void zeroPerThread(int thread);
 	void flushForces(int threads);
 
@@ -215,6 +223,7 @@ private:
 	struct Near {
 		Vector3r pos;
 		Real     radius;
+		bool     operator==(const Near& o) const { return radius == o.radius && pos == o.pos; }
 	};
 	std::vector<Near>                  near;
 	// near at the start of the epoch of the bound on potential pairs' gaps (see gather).
