@@ -54,12 +54,7 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, rec
         if not sort:
             O.engines[2].sortDisorder = 0
     O.step()  # first step: collider and interaction creation, not timed
-    O.timingEnabled = True
-    for e in O.engines:
-        e.execTime = 0
-    phases = hasattr(O.engines[2], "passTime")
-    if phases:
-        O.engines[2].gatherTime = O.engines[2].passTime = O.engines[2].flushTime = 0
+    start_timing()
     intr_steps, wall = 0, 0.0
     done = 0
     while done < steps:
@@ -71,8 +66,9 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, rec
     O.timingEnabled = False
     out = {"law": label, "interactions": O.interactions.countReal(), "ns_per_bridge_step": loop_ns / intr_steps,
            "particle_steps_per_s": len(O.bodies) * steps / wall, "wall_s": wall}
+    phases = loop_phases(O.engines[2], intr_steps)
     if phases:
-        out.update({k: getattr(O.engines[2], k + "Time") / intr_steps for k in ("gather", "pass", "flush")})
+        out.update(phases)
         # What the memory of (c) is made of: recorded interactions, those of them with objects of their
         # own, and the sets of invariants (see PendularLoop.keepRecords).
         out.update(recorded=O.engines[2].nRecorded, with_objects=O.engines[2].nWithObjects, invariants=O.engines[2].nInvariants)
@@ -215,16 +211,10 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             if parallel_bodies is not None and hasattr(e, "parallelBodies"):
                 e.parallelBodies = parallel_bodies
         O.run(100, True)  # interactions and bridges in place before timing
-        O.timingEnabled = True  # where the time goes (a clock read per engine and step, the same for every variant)
-        for e in O.engines:
-            e.execTime = 0
-        loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
-        if hasattr(loop_engine, "passTime"):
-            loop_engine.gatherTime = loop_engine.passTime = loop_engine.flushTime = 0
+        start_timing()  # where the time goes (a clock read per engine and step, the same for every variant)
         out = {"particle_steps_per_s": len(info["flowing"]) * steps / timed_steps(steps), "phases": engine_times(steps)}
-        if hasattr(loop_engine, "passTime"):
-            out["phases"].update({"  gather": loop_engine.gatherTime / steps, "  pass": loop_engine.passTime / steps,
-                                  "  forces": loop_engine.flushTime / steps})
+        loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
+        out["phases"].update({"  " + k: v for k, v in loop_phases(loop_engine, steps).items()})
         O.timingEnabled = False
         return out
 
@@ -243,6 +233,27 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=20000))
             runs[t][4].append(timed(ours_mat(), "fused", t, integrator="newton"))
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
+
+
+# PendularLoop's phases: gathering the bodies, the pass over the interactions, the force hand-over.
+LOOP_PHASES = ("gather", "pass", "flush")
+
+
+def start_timing():
+    """Turn YADE's engine timing on (O.timingEnabled) and zero every engine's execTime and PendularLoop's
+    phase times, before a timed run (read with engine_times and loop_phases)."""
+    O.timingEnabled = True
+    for e in O.engines:
+        e.execTime = 0
+        if hasattr(e, "passTime"):
+            for k in LOOP_PHASES:
+                setattr(e, k + "Time", 0)
+
+
+def loop_phases(loop, per):
+    """PendularLoop's phase times [ns] since start_timing, divided by `per` (steps or interaction-steps);
+    {} for another interaction loop."""
+    return {k: getattr(loop, k + "Time") / per for k in LOOP_PHASES} if hasattr(loop, "passTime") else {}
 
 
 def engine_times(steps):
@@ -278,9 +289,7 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     O.run(100, True)
     collider = next(e for e in O.engines if e.label == "collider")
     runs0 = collider.numAction
-    O.timingEnabled = True
-    for e in O.engines:
-        e.execTime = 0
+    start_timing()
     fused = next((e for e in O.engines if hasattr(e, "keepRecords")), None)
     # (keepRecords, skipFar) in turn, chunk by chunk: the default first.
     modes = [(True, True), (True, False), (False, False)] if fused is not None else [(True, True)]
