@@ -433,7 +433,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			const auto& J = interactions[ahead1];
 			if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
 			if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-		} else if (skipApart && (known.fullCheck || !(ahead.gapBound > 2 * known.epochDisplacement))) { // a potential pair to check: its bodies
+		} else if (skipApart && !apartByBound(ahead)) { // a potential pair to check: its bodies
 			if (size_t(math::max(ahead.id1, ahead.id2)) < near.size()) {
 				__builtin_prefetch(&near[ahead.id1]);
 				__builtin_prefetch(&near[ahead.id2]);
@@ -470,7 +470,7 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			// A potential interaction of two PendularMat spheres seen in an earlier step (same object, so
 			// the same ids; it became real only in this loop, which updates the slot). Apart by more than
 			// the bodies can have moved since its last check: nothing to read but the slot (see gather).
-			if (!known.fullCheck && slot.gapBound > 2 * known.epochDisplacement) {
+			if (apartByBound(slot)) {
 				++c.fused;
 				++c.apart;
 				++c.bounded;

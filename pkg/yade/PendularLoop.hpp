@@ -261,6 +261,9 @@ private:
 		bool   placeholders = false;
 	};
 	Known                              known;
+	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have
+	// moved since, is still positive (see gather), so nothing of it is read but the slot.
+	bool apartByBound(const Slot& slot) const { return !known.fullCheck && slot.gapBound > 2 * known.epochDisplacement; }
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
