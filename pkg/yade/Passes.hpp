@@ -6,7 +6,9 @@
 #include <core/Bound.hpp>
 #include <core/State.hpp>
 
+#include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #ifdef YADE_OPENMP
@@ -29,13 +31,43 @@ namespace pendular {
 	// aspherical (Body::isAspherical), or of another subdomain (yade.mpy). Filled by PendularLoop's gathering
 	// and used by PendularIntegrator in the same step (see PendularIntegrator::unsupported), so that a
 	// step reads each Body once.
+	// parts: the ids of each thread in the per-body passes, thread t of T has [parts[t], parts[t + 1]) (see
+	// partOf; PendularLoop chooses them so that a thread moves the bodies whose interactions it computes).
 	struct BodyPointers {
 		const void*                   scene = nullptr; // the Scene and its iteration they were read in
 		long                          iter  = -1;
 		std::vector<State*>           states;
 		std::vector<const Bound*>     bounds;
 		int                           clumps = 0, aspherical = 0, subdomains = 0;
+		std::vector<long>             parts;
 	};
+	// The range [first, second) of indices 0..n-1 that thread `thread` of `threads` takes in a pass shared
+	// out by `parts` (threads + 1 ascending bounds from 0 to n), else an even share (as schedule(static)).
+	// Every index belongs to exactly one thread whatever parts holds: only the speed depends on it.
+	inline std::pair<long, long> partOf(const std::vector<long>& parts, long n, int thread, int threads)
+	{
+		if (long(parts.size()) == long(threads) + 1 && parts.front() == 0 && parts.back() == n) return { parts[thread], parts[thread + 1] };
+		const long share = n / threads, rest = n % threads;
+		const long first = thread * share + std::min<long>(thread, rest);
+		return { first, first + share + (thread < rest) };
+	}
+	// OpenMP's thread number and team size in a parallel region (0 and 1 without OpenMP).
+	inline int threadNumber()
+	{
+#ifdef YADE_OPENMP
+		return omp_get_thread_num();
+#else
+		return 0;
+#endif
+	}
+	inline int teamSize()
+	{
+#ifdef YADE_OPENMP
+		return omp_get_num_threads();
+#else
+		return 1;
+#endif
+	}
 	// One body's entry of BodyPointers (b: nullptr for an erased body): its State and Bound, and its part
 	// of the flags (or-ed into the pass's reduction variables). subdomain: the scene's.
 	inline void readBody(const Body* b, int subdomain, State*& state, const Bound*& bound, int& clumps, int& aspherical, int& subdomains)

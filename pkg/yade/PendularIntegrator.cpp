@@ -233,10 +233,13 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 	forces.sync();
 	Real flag  = 0;
 	long count = 0;
+	// Each thread the part of the bodies that it gathered in the PendularLoop of this step (bodies.parts).
 #ifdef YADE_OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallelBodies) reduction(max : flag) reduction(+ : count)
+#pragma omp parallel num_threads(threads) if (n >= parallelBodies) reduction(max : flag) reduction(+ : count)
 #endif
-	for (long id = 0; id < n; ++id) {
+	{
+	const auto part = pendular::partOf(bodies.parts, n, pendular::threadNumber(), pendular::teamSize());
+	for (long id = part.first; id < part.second; ++id) {
 		if (id + prefetchAhead < n && states[id + prefetchAhead]) {
 			prefetchObject<1>(states[id + prefetchAhead]);
 			if (bounds[id + prefetchAhead]) __builtin_prefetch(bounds[id + prefetchAhead]);
@@ -294,6 +297,7 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 		const Vector3r disp    = s.pos - bound->refPos;
 		const Real     maxDisp = math::max(math::abs(disp[0]), math::max(math::abs(disp[1]), math::abs(disp[2])));
 		flag                   = math::max(flag, (!maxDisp || maxDisp < bound->sweepLength) ? Real(0.5) : Real(2));
+	}
 	}
 	nIntegrated = count;
 	return flag;

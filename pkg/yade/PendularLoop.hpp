@@ -114,7 +114,8 @@ private:
 	void visit(long i, long ahead1, long ahead2, const Resolved& r, bool skipApart, bool recording, Counts& c);
 	void step(const shared_ptr<Interaction>& I, const Resolved& r, Counts& c);
 	long colliderRunCount() const;
-	void buildWork(bool use, long colliderRuns);
+	void buildWork(bool use, long colliderRuns, int threads);
+	void shareWork(int threads);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	// ScGeom::rotate's rotation of the shear force from the last normal to this one (its axes are
@@ -186,10 +187,6 @@ private:
 	bool ownsStep(const Resolved& r) const;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
-	// One thread: its force arrays are zeroed in the gathering's sweep (one sweep over the bodies fewer).
-	// Several: each thread zeroes its own at the start of the pass (zeroPerThread), in its own cache.
-	bool forcesZeroedInGather() const { return threadForce.size() == 1; }
-	void zeroPerThread(int thread);
 	void flushForces(int threads);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
@@ -232,6 +229,12 @@ private:
 	// what for). Atomic: the wrapped Python paths drop it from other threads.
 	std::vector<long>                  work;
 	std::atomic<bool>                  workValid { false };
+	// The threads' parts of the bodies and of work (see shareWork; empty: even parts); borders[k][t]: the
+	// bodies of part t that the entries of part k reach (ascending); partedPass: the last pass computed the
+	// parts of work, each on its thread.
+	std::vector<long>                                bodyParts, workParts;
+	std::vector<std::vector<std::vector<Body::id_t>>> borders;
+	bool                                             partedPass = false;
 	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
 	// freed (freeArrays) starts again from these values, as a new loop.
 	struct Known {
@@ -264,7 +267,10 @@ private:
 	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have
 	// moved since, is still positive (see gather), so nothing of it is read but the slot.
 	bool apartByBound(const Slot& slot) const { return !known.fullCheck && slot.gapBound > 2 * known.epochDisplacement; }
-	std::vector<std::vector<Vector3r>> threadForce, threadTorque; // per OpenMP thread, per body id
+	// Per OpenMP thread, per body id; zero between steps (the flush zeroes what it read); forcesPending: a
+	// pass has added to them and no flush has read them since (a step that ended in between).
+	std::vector<std::vector<Vector3r>> threadForce, threadTorque;
+	bool                               forcesPending = false;
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
 	// two placeholders shared by all (so that YADE's collider sees it real) instead of its own ScGeom
