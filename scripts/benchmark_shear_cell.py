@@ -7,6 +7,9 @@
 # Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache]
 #   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
 #   cache: file of the prepared cell, made if missing.
+# Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
+# this VM has a mode in which two threads gain nothing (round trip 300-420 ns instead of 55-110), and
+# a ratio of thread counts holds only between runs of the same mode.
 import sys
 
 from yade import O
@@ -23,7 +26,8 @@ print("(b) shear cell %s, wet13.6nl, %d steps, particle-steps/s (ratio to the bu
 for t in threads:
     base = results[t][0]["particle_steps_per_s"]
     for name, r in zip(NAMES, results[t]):
-        print("  %d thread(s)  %-32s %10.3g  (%.2f)" % (t, name, r["particle_steps_per_s"], r["particle_steps_per_s"] / base))
+        trip = "" if r["round_trip_ns"] is None else "  core round trip %.0f ns" % r["round_trip_ns"]
+        print("  %d thread(s)  %-32s %10.3g  (%.2f)%s" % (t, name, r["particle_steps_per_s"], r["particle_steps_per_s"] / base, trip))
 print("  where the time goes, ours with PendularLoop, ns per step (engines; PendularLoop's phases indented):")
 print("    %-40s %s" % ("", "  ".join("%10s" % ("%d thread(s)" % t) for t in threads)))
 for key in results[threads[0]][2]["phases"]:

@@ -239,6 +239,9 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 #endif
 	{
 	const auto part = pendular::partOf(bodies.parts, n, pendular::threadNumber(), pendular::teamSize());
+	// The angular velocity whose rotation over dt was made last, and that rotation.
+	Vector3r    rotated = Vector3r::Zero();
+	Quaternionr rotation = Quaternionr::Identity();
 	for (long id = part.first; id < part.second; ++id) {
 		if (id + prefetchAhead < n && states[id + prefetchAhead]) {
 			prefetchObject<1>(states[id + prefetchAhead]);
@@ -285,9 +288,16 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 		s.pos += s.vel * dt;
 		const Real angle2 = s.angVel.squaredNorm();
 		if (angle2 != 0) {
-			const Real        angle = math::sqrt(angle2);
-			const Quaternionr q(AngleAxisr(angle * dt, s.angVel / angle));
-			s.ori = q * s.ori;
+			// The rotation of this step, made again only for another angular velocity: the bodies of a
+			// rotating wall (RotationEngine) share one. In the ci cell (588 of its 2 200 bodies) their sines
+			// and cosines took about 10 of this pass's 59 µs on one thread, all on the thread whose part holds
+			// the wall. The same inputs give the same quaternion: bit-identical to NewtonIntegrator.
+			if (s.angVel != rotated) {
+				const Real angle = math::sqrt(angle2);
+				rotated          = s.angVel;
+				rotation         = Quaternionr(AngleAxisr(angle * dt, s.angVel / angle));
+			}
+			s.ori = rotation * s.ori;
 		}
 		s.ori.normalize();
 		++count;

@@ -182,7 +182,8 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     with YADE's NewtonIntegrator instead of PendularIntegrator)} of dicts: the fourth tells what the
     per-body phases gain from threads at the ci cell's 2 200 bodies (the default, 1000, against 20000), the fifth what
     PendularIntegrator gains. Each dict also has "phases": ns per step of each engine and of PendularLoop's
-    gathering, pass and force hand-over (O.timingEnabled), the per-phase timings of the run."""
+    gathering, pass and force hand-over (O.timingEnabled), the per-phase timings of the run, and
+    "round_trip_ns": core_round_trip() just before the run (the machine's mode)."""
     import json
     import tempfile
 
@@ -211,8 +212,10 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             if parallel_bodies is not None and hasattr(e, "parallelBodies"):
                 e.parallelBodies = parallel_bodies
         O.run(100, True)  # interactions and bridges in place before timing
+        round_trip = core_round_trip()  # the machine's mode, just before the timed steps
         start_timing()  # where the time goes (a clock read per engine and step, the same for every variant)
-        out = {"particle_steps_per_s": len(info["flowing"]) * steps / timed_steps(steps), "phases": engine_times(steps)}
+        out = {"particle_steps_per_s": len(info["flowing"]) * steps / timed_steps(steps), "phases": engine_times(steps),
+               "round_trip_ns": round_trip}
         loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
         out["phases"].update({"  " + k: v for k, v in loop_phases(loop_engine, steps).items()})
         O.timingEnabled = False
@@ -233,6 +236,19 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=20000))
             runs[t][4].append(timed(ours_mat(), "fused", t, integrator="newton"))
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
+
+
+def core_round_trip():
+    """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
+    None if it is not built. On this project's two-vCPU VM it is 55-110 ns when both vCPUs share a cache
+    and 300-420 ns when they do not; in the second mode a step on two threads runs at 0.8-1.1x of one
+    thread, so a ratio of thread counts means something only with the round trips of its runs."""
+    import subprocess
+
+    exe = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "core_latency")  # the package is in build/python
+    if not os.path.exists(exe):
+        return None
+    return float(subprocess.run([exe], capture_output=True, text=True, check=True).stdout)
 
 
 # PendularLoop's phases: gathering the bodies, the pass over the interactions, the force hand-over.

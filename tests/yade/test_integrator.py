@@ -3,7 +3,8 @@
 # - Wet packings of 300 spheres in boxes of walls and of facets under gravity, 1000 steps, with what
 #   NewtonIntegrator's step depends on: Cundall damping (0 and 0.2, gravity damped and not,
 #   dampGravity), a sphere with isDamped=False, spheres with some degrees of freedom blocked, a
-#   fixed sphere moved by its velocity alone, and the collider's flag (NewtonIntegrator.maxVelocitySq,
+#   fixed sphere moved by its velocity alone, fixed spheres spinning with one angular velocity (a
+#   rotating wall: PendularIntegrator reuses the rotation of the step) and another, and the collider's flag (NewtonIntegrator.maxVelocitySq,
 #   which PendularIntegrator writes back: a wrong flag changes when the collider runs, counted by its
 #   numAction).
 # - yade -j1: the same operations in the same order on the same numbers: positions, velocities,
@@ -42,6 +43,11 @@ def build(box, damping, damp_gravity, integrator, clump=False, extra=()):
     spheres[2].state.blockedDOFs = "yzXY"
     spheres[3].state.blockedDOFs = "xyzXYZ"  # fixed: moved by its velocity only
     spheres[3].state.vel, spheres[3].state.angVel = (0.01, -0.02, 0.005), (3.0, 1.0, -2.0)
+    # Fixed spheres spinning as parts of one rotating wall (the same angular velocity, whose rotation
+    # PendularIntegrator makes once and reuses), one of them with another angular velocity in between.
+    for k, w in ((7, (3.0, 1.0, -2.0)), (8, (3.0, 1.0, -2.0)), (9, (0.0, 0.0, 5.0)), (10, (3.0, 1.0, -2.0))):
+        spheres[k].state.blockedDOFs = "xyzXYZ"
+        spheres[k].state.angVel = w
     if clump:
         O.bodies.clump([spheres[4].id, spheres[5].id])
     O.engines = scene.engines(gravity=(0, 0, -9.81), damping=damping, integrator=integrator, extra=extra)
