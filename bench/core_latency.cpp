@@ -1,8 +1,8 @@
 // Round trip of a cache line between two threads [ns]: one thread writes a counter, the other answers
 // by writing it back, 100 000 times; the median of 7 batches is printed. On this project's VM (two
-// vCPUs of an AMD EPYC) it tells the machine's two modes apart: 55-110 ns when both vCPUs share a
-// cache, 300-420 ns when they do not (then every line that one core wrote and the other reads crosses
-// between chips, and a two-thread step of a shear cell runs at 0.8-1.1x of one thread). The
+// vCPUs of an AMD EPYC) it tells the machine's two modes apart: 55-110 ns (probably both vCPUs sharing
+// a cache) and 300-420 ns (probably not: every line that one core wrote and the other reads then crosses
+// between chips, and a two-thread step of a shear cell ran at 0.8-1.1x of one thread). The
 // benchmarks print it next to every timed run so that their ratios can be read with the mode they
 // were measured in. Not a test.
 #include <algorithm>

@@ -240,9 +240,9 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
 
 def core_round_trip():
     """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
-    None if it is not built. On this project's two-vCPU VM it is 55-110 ns when both vCPUs share a cache
-    and 300-420 ns when they do not; in the second mode a step on two threads runs at 0.8-1.1x of one
-    thread, so a ratio of thread counts means something only with the round trips of its runs."""
+    None if it is not built. On this project's two-vCPU VM it is 55-110 ns in one mode and 300-420 ns in
+    the other (probably the vCPUs sharing a cache or not); in the second a step on two threads ran at
+    0.8-1.1x of one thread, so a ratio of thread counts means something only with the round trips of its runs."""
     import subprocess
 
     exe = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "core_latency")  # the package is in build/python
