@@ -169,12 +169,12 @@ void PendularLoop::gather(int threads)
 	for (auto& t : threadTorque)
 		t.resize(n, Vector3r::Zero());
 	// Zeroed by the flush after it read them (see flushForces), unless a step ended before its flush.
-	if (forcesPending)
+	if (known.forcesPending)
 		for (size_t k = 0; k < threadForce.size(); ++k) {
 			std::fill(threadForce[k].begin(), threadForce[k].end(), Vector3r::Zero());
 			std::fill(threadTorque[k].begin(), threadTorque[k].end(), Vector3r::Zero());
 		}
-	forcesPending      = false;
+	known.forcesPending = false;
 	bodyPointers.scene = nullptr; // valid once the pass is complete
 	bodyPointers.parts = bodyParts;
 	bodyPointers.states.resize(n);
@@ -342,7 +342,7 @@ void PendularLoop::action()
 	toRecord.resize(threads);
 	toForget.resize(threads);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
-	forcesPending        = true; // until the flush has read and zeroed the force arrays
+	known.forcesPending  = true; // until the flush has read and zeroed the force arrays
 	// Between two runs of the collider and within one epoch of the bound on potential pairs' gaps
 	// (see gather), the container is the one of the last pass, and a potential pair whose bound exceeds
 	// what the bodies can move in the whole epoch is skipped at every step: the pass visits only the
@@ -408,8 +408,9 @@ void PendularLoop::action()
 		bounded += c.bounded;
 	}
 	// The skipped entries, counted as the full pass counts them (apart by the bound).
-	partedPass = fast && teamComplete && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
-	        && bodyParts.back() == long(particles.size());
+	// The flush may read the arrays by parts and borders (see flushForces).
+	const bool parted = fast && teamComplete && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
+	        && !bodyParts.empty() && bodyParts.back() == long(particles.size());
 	nSkipped = size - m;
 	fused += nSkipped;
 	apart += nSkipped;
@@ -431,7 +432,7 @@ void PendularLoop::action()
 	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns, threads);
 	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
-	flushForces(threads);
+	flushForces(threads, parted);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
@@ -607,10 +608,9 @@ void PendularLoop::shareWork(int threads)
 		while (t < threads && sum >= total * float(t) / float(threads))
 			bodyParts[size_t(t++)] = id + 1;
 	}
-	// The list, stably by the part of each entry's first body.
-	const auto owner = [&](long i) {
-		return int(std::upper_bound(bodyParts.begin() + 1, bodyParts.end() - 1, long(slots[i].id1)) - (bodyParts.begin() + 1));
-	};
+	// The part a body is in; the list, stably by the part of each entry's first body.
+	const auto partOfBody = [&](long id) { return int(std::upper_bound(bodyParts.begin() + 1, bodyParts.end() - 1, id) - (bodyParts.begin() + 1)); };
+	const auto owner      = [&](long i) { return partOfBody(slots[i].id1); };
 	workParts.assign(size_t(threads) + 1, 0);
 	for (const long i : work)
 		++workParts[size_t(owner(i)) + 1];
@@ -625,7 +625,7 @@ void PendularLoop::shareWork(int threads)
 	for (int k = 0; k < threads; ++k)
 		for (long j = workParts[size_t(k)]; j < workParts[size_t(k) + 1]; ++j)
 			for (const Body::id_t id : { slots[work[size_t(j)]].id1, slots[work[size_t(j)]].id2 }) {
-				const auto part = int(std::upper_bound(bodyParts.begin() + 1, bodyParts.end() - 1, long(id)) - (bodyParts.begin() + 1));
+				const int part = partOfBody(id);
 				if (part != k && id >= 0 && id < n) borders[size_t(k)][size_t(part)].push_back(id);
 			}
 	for (auto& byPart : borders)
@@ -1336,7 +1336,7 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 	if (I->isReal()) callbacksOn(*I, r);
 }
 
-void PendularLoop::flushForces(int threads)
+void PendularLoop::flushForces(int threads, bool parted)
 {
 	// Into the force container's summed arrays (addForceUnsynced), not through addForce: addForce
 	// writes the container's shared flag and its per-thread maximum ids at every call, and two
@@ -1352,7 +1352,7 @@ void PendularLoop::flushForces(int threads)
 	// In one thread the sum per body is that of InteractionLoop's: the thread's sum. Each thread the
 	// bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once read: the
 	// arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in its cache.
-	// After a pass by parts (partedPass), array k holds forces only on the bodies of part k and of its
+	// After a pass by parts (parted), array k holds forces only on the bodies of part k and of its
 	// borders: the other entries are exact zeros, and are neither read nor written (reading them moved
 	// every line of every array from the core that zeroed it to the other one at every step).
 	const long arrays = long(threadForce.size());
@@ -1362,7 +1362,7 @@ void PendularLoop::flushForces(int threads)
 	{
 		const int  thread  = pendular::threadNumber();
 		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
-		const bool byParts = partedPass && pendular::teamSize() == arrays;
+		const bool byParts = parted && pendular::teamSize() == arrays;
 		// Per array, the next of its border bodies in this part.
 		std::vector<const Body::id_t*> next(size_t(arrays), nullptr), last(size_t(arrays), nullptr);
 		if (byParts)
@@ -1395,7 +1395,7 @@ void PendularLoop::flushForces(int threads)
 				if (t != Vector3r::Zero()) forces.addTorqueUnsynced(Body::id_t(id), t);
 			}
 	}
-	forcesPending = false;
+	known.forcesPending = false;
 }
 
 } // namespace yade

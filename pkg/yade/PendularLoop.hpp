@@ -187,7 +187,8 @@ private:
 	bool ownsStep(const Resolved& r) const;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
-	void flushForces(int threads);
+	// parted: the pass computed the parts of work, each on its thread (see shareWork).
+	void flushForces(int threads, bool parted);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
 	// whether it was potential. Held by a weak_ptr and compared by owner (control block), not by
@@ -230,11 +231,9 @@ private:
 	std::vector<long>                  work;
 	std::atomic<bool>                  workValid { false };
 	// The threads' parts of the bodies and of work (see shareWork; empty: even parts); borders[k][t]: the
-	// bodies of part t that the entries of part k reach (ascending); partedPass: the last pass computed the
-	// parts of work, each on its thread.
+	// bodies of part t that the entries of part k reach (ascending).
 	std::vector<long>                                bodyParts, workParts;
 	std::vector<std::vector<std::vector<Body::id_t>>> borders;
-	bool                                             partedPass = false;
 	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
 	// freed (freeArrays) starts again from these values, as a new loop.
 	struct Known {
@@ -262,15 +261,15 @@ private:
 		Scene* recordScene  = nullptr;
 		bool   stale        = false;
 		bool   placeholders = false;
+		// A pass has added to the force arrays and no flush has read them since (a step that ended in between).
+		bool forcesPending = false;
 	};
 	Known                              known;
 	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have
 	// moved since, is still positive (see gather), so nothing of it is read but the slot.
 	bool apartByBound(const Slot& slot) const { return !known.fullCheck && slot.gapBound > 2 * known.epochDisplacement; }
-	// Per OpenMP thread, per body id; zero between steps (the flush zeroes what it read); forcesPending: a
-	// pass has added to them and no flush has read them since (a step that ended in between).
+	// Per OpenMP thread, per body id; zero between steps (the flush zeroes what it read, see Known::forcesPending).
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque;
-	bool                               forcesPending = false;
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
 	// two placeholders shared by all (so that YADE's collider sees it real) instead of its own ScGeom
