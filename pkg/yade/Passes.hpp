@@ -4,10 +4,15 @@
 
 #include <core/Body.hpp>
 #include <core/Bound.hpp>
+#include <core/Engine.hpp>
+#include <core/ForceContainer.hpp>
 #include <core/State.hpp>
+
+#include <boost/weak_ptr.hpp>
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -78,6 +83,34 @@ namespace pendular {
 		clumps |= !b->isStandalone();
 		aspherical |= b->isAspherical();
 		subdomains |= b->subdomain != subdomain || b->getIsSubdomain() || b->getIsFluidDomainBbox();
+	}
+	// Whether `engines` is the engine list remembered in `scanned`, its engines compared by owner (so that a
+	// new engine made where a freed one was is another engine); if not, remembers it. An engine that looks
+	// for others in O.engines does so again only when the list changed.
+	inline bool sameEngines(std::vector<boost::weak_ptr<Engine>>& scanned, const std::vector<shared_ptr<Engine>>& engines)
+	{
+		bool same = scanned.size() == engines.size();
+		for (std::size_t i = 0; same && i < scanned.size(); ++i)
+			same = !scanned[i].owner_before(engines[i]) && !engines[i].owner_before(scanned[i]);
+		if (!same) scanned.assign(engines.begin(), engines.end());
+		return same;
+	}
+	// The force container's summed force and torque entries (its _force and _torque, std::vectors of
+	// Vector3r: getForceUnsynced returns the entry itself) of ids 0..size-1 as two arrays, to be written
+	// as ForceContainer's addForceUnsynced and reset write them, without a call into libyade per body;
+	// nullptrs if the container is not synced, has fewer entries or they are not contiguous.
+	struct SummedArrays {
+		Vector3r *forces = nullptr, *torques = nullptr;
+	};
+	inline SummedArrays summedArrays(ForceContainer& container, long size)
+	{
+		if (size <= 0 || !container.synced) return {};
+		const auto last = Body::id_t(size - 1);
+		// getForce gives the container's zero beyond its entries
+		if (&container.getForce(last) == &container.getForce(std::numeric_limits<Body::id_t>::max())) return {};
+		SummedArrays a { const_cast<Vector3r*>(&container.getForceUnsynced(0)), const_cast<Vector3r*>(&container.getTorqueUnsynced(0)) };
+		if (&container.getForceUnsynced(last) != a.forces + last || &container.getTorqueUnsynced(last) != a.torques + last) return {};
+		return a;
 	}
 	// The threads of an engine's passes: its ompThreads if set (> 0), at most OpenMP's maximum.
 	inline int passThreads(int ompThreads)

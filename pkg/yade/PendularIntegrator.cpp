@@ -33,13 +33,7 @@ namespace {
 
 void PendularIntegrator::findNewton()
 {
-	// The engine list is scanned again only when it changed (its engines compared by owner, so that
-	// a new engine made where a freed one was is another engine).
-	bool same = scannedEngines.size() == scene->engines.size();
-	for (size_t i = 0; same && i < scannedEngines.size(); ++i)
-		same = !scannedEngines[i].owner_before(scene->engines[i]) && !scene->engines[i].owner_before(scannedEngines[i]);
-	if (!same) {
-		scannedEngines.clear();
+	if (!pendular::sameEngines(scannedEngines, scene->engines)) {
 		newton.reset();
 		loop.reset();
 		cachedNewton = nullptr; // another list: its NewtonIntegrator's parameters are read again (see refresh)
@@ -50,7 +44,6 @@ void PendularIntegrator::findNewton()
 		// scenes set velocities only): then the loop's gathering stands for this engine's check.
 		static const std::set<std::string> harmless { "PendularCheck", "RotationEngine", "TranslationEngine", "NewtonIntegrator" };
 		for (const auto& engine : scene->engines) {
-			scannedEngines.push_back(engine);
 			if (engine.get() == this) before = false;
 			if (!engine) continue;
 			// Matched by class name: only the members of the base Engine (dead, scene, action) are used in C++.

@@ -653,7 +653,7 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	MPI_Finalized(&finalized);
 	if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
 	if (ranks > 1) return false;
-	static const std::set<std::string> known { "ForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck", "NewtonIntegrator",
+	static const std::set<std::string> known { "ForceResetter", "PendularForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck", "NewtonIntegrator",
 		                                   "PendularIntegrator", "PyRunner", "RotationEngine" };
 	int loops = 0; // another PendularLoop would take the placeholders of this one's records for objects
 	for (const auto& e : scene->engines) {
@@ -1349,6 +1349,20 @@ void PendularLoop::flushForces(int threads, bool parted)
 	if (n == 0) return;
 	forces.addMaxId(Body::id_t(n - 1));
 	forces.sync();
+	// The summed arrays written directly (a call into libyade per body and array was a third of this phase).
+	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
+	const auto                   add    = [&forces, &summed](long id, const Vector3r& f, const Vector3r& t) {
+                if (f != Vector3r::Zero()) {
+                        if (summed.forces) summed.forces[id] += f;
+                        else
+                                forces.addForceUnsynced(Body::id_t(id), f);
+                }
+                if (t != Vector3r::Zero()) {
+                        if (summed.torques) summed.torques[id] += t;
+                        else
+                                forces.addTorqueUnsynced(Body::id_t(id), t);
+                }
+	};
 	// In one thread the sum per body is that of InteractionLoop's: the thread's sum. Each thread the
 	// bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once read: the
 	// arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in its cache.
@@ -1363,6 +1377,7 @@ void PendularLoop::flushForces(int threads, bool parted)
 		const int  thread  = pendular::threadNumber();
 		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
 		const bool byParts = parted && pendular::teamSize() == arrays;
+		if (thread == 0) known.flushTeam = pendular::teamSize();
 		// Per array, the next of its border bodies in this part.
 		std::vector<const Body::id_t*> next(size_t(arrays), nullptr), last(size_t(arrays), nullptr);
 		if (byParts)
@@ -1376,8 +1391,7 @@ void PendularLoop::flushForces(int threads, bool parted)
 			for (long id = part.first; id < part.second; ++id) {
 				const Vector3r f = threadForce[0][id], t = threadTorque[0][id];
 				threadForce[0][id] = threadTorque[0][id] = Vector3r::Zero();
-				if (f != Vector3r::Zero()) forces.addForceUnsynced(Body::id_t(id), f);
-				if (t != Vector3r::Zero()) forces.addTorqueUnsynced(Body::id_t(id), t);
+				add(id, f, t);
 			}
 		else
 			for (long id = part.first; id < part.second; ++id) {
@@ -1391,8 +1405,7 @@ void PendularLoop::flushForces(int threads, bool parted)
 					t += threadTorque[k][id];
 					threadForce[k][id] = threadTorque[k][id] = Vector3r::Zero();
 				}
-				if (f != Vector3r::Zero()) forces.addForceUnsynced(Body::id_t(id), f);
-				if (t != Vector3r::Zero()) forces.addTorqueUnsynced(Body::id_t(id), t);
+				add(id, f, t);
 			}
 	}
 	known.forcesPending = false;

@@ -100,6 +100,10 @@ public:
 	static void guardReaders() { readersGuarded = true; }
 	// What this step's gathering read of every body (see pendular::BodyPointers).
 	const pendular::BodyPointers& gatheredBodies() const { return bodyPointers; }
+	// The threads of the last hand-over of the forces into the force container (0: none yet) and their parts
+	// of the bodies (see pendular::partOf): PendularForceResetter zeroes each part in the thread that wrote it.
+	int                      flushTeam() const { return known.flushTeam; }
+	const std::vector<long>& flushParts() const { return bodyParts; }
 	DECLARE_LOGGER;
 
 private:
@@ -263,6 +267,8 @@ private:
 		bool   placeholders = false;
 		// A pass has added to the force arrays and no flush has read them since (a step that ended in between).
 		bool forcesPending = false;
+		// The threads of the last flush (0: none since the loop started; see flushTeam).
+		int flushTeam = 0;
 	};
 	Known                              known;
 	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have

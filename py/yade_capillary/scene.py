@@ -3,7 +3,7 @@ from yade import O
 from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
                           Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
                           Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
-                          PendularCheck, PendularIntegrator, PendularLoop, PendularMat)
+                          PendularCheck, PendularForceResetter, PendularIntegrator, PendularLoop, PendularMat)
 
 from . import objects
 
@@ -40,7 +40,9 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     resets them while the pair is apart, so they are removed when the spheres move away.
     loop: "fused" (default, PendularLoop), "standard" (YADE's InteractionLoop with our functors),
     or an InteractionLoop instance to use instead (e.g. YADE's built-in capillary law, for
-    comparisons). The collider is labelled ``collider`` (yade.mpy looks it up by that label).
+    comparisons). With a PendularLoop the forces are reset by PendularForceResetter (a ForceResetter
+    whose threads zero the bodies they handed forces over for), else by ForceResetter.
+    The collider is labelled ``collider`` (yade.mpy looks it up by that label).
     integrator: "pendular" (default): NewtonIntegrator(dead=True) holds gravity and damping and
     PendularIntegrator, after it, does its step (the same numbers, faster; NewtonIntegrator's own
     step for scenes it does not cover, see its docstring); "newton": YADE's NewtonIntegrator alone
@@ -52,7 +54,7 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
         loop = interaction_loop(loop, detection_factor, law_label)
     newton = NewtonIntegrator(gravity=gravity, damping=damping, dead=integrator == "pendular")
     return [
-        ForceResetter(),
+        PendularForceResetter() if isinstance(loop, PendularLoop) else ForceResetter(),
         InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=detection_factor), Bo1_Facet_Aabb(), Bo1_Wall_Aabb()],
                               label="collider"),
         loop,
