@@ -101,25 +101,30 @@ namespace {
 	}
 	bool holdsPlaceholders(const Interaction& I) { return I.geom == placeholderGeom(); }
 
-	// Forces of the fused pass: into per-thread arrays indexed by body id, handed to the scene's
-	// force container once per body at the end of the step (PendularLoop::flushForces). In one
-	// thread the sums are those of InteractionLoop, in the same order.
+	// Forces of the fused pass: a thread adds those of the bodies of its part straight into the force
+	// container's summed arrays (no other thread writes them), the others into its own arrays indexed by
+	// body id, handed over once per body at the end of the step (PendularLoop::flushForces). In one
+	// thread the sums are those of InteractionLoop, in the same order: the summed entries start from
+	// zero (ForceResetter) as InteractionLoop's per-thread ones do, unless an engine between them added forces.
 	struct ThreadSink {
-		Vector3r * forces, *torques;
-		Body::id_t id1, id2;
-		bool       enabled; // Interaction::isActive
+		const PendularLoop::DirectPart& direct;
+		Vector3r *                      forces, *torques;
+		Body::id_t                      id1, id2;
+		bool                            enabled; // Interaction::isActive
+		__attribute__((always_inline)) Vector3r& forceOf(Body::id_t id) const { return direct.has(id) ? direct.forces[id] : forces[id]; }
+		__attribute__((always_inline)) Vector3r& torqueOf(Body::id_t id) const { return direct.has(id) ? direct.torques[id] : torques[id]; }
 		// Inlined: called once per bridge-step, a call cost more than the six additions.
 		__attribute__((always_inline)) void force1(const Vector3r& f) const
 		{
-			forces[id1] -= f;
-			forces[id2] += f;
+			forceOf(id1) -= f;
+			forceOf(id2) += f;
 		}
 		__attribute__((always_inline)) void forceTorque(const Vector3r& f, const Vector3r& t1, const Vector3r& t2) const
 		{
 			if (!enabled) return;
 			force1(f);
-			torques[id1] += t1;
-			torques[id2] += t2;
+			torqueOf(id1) += t1;
+			torqueOf(id2) += t2;
 		}
 		__attribute__((always_inline)) void force(const Vector3r& f) const
 		{
@@ -330,6 +335,15 @@ void PendularLoop::action()
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
 	gather(threads); // also zeroes the force arrays
+	// The force container covers every body and its per-thread entries are summed (addMaxId, sync): the
+	// pass adds the forces of each thread's part of the bodies into its summed arrays (see ThreadSink).
+	const long bodies = long(particles.size());
+	if (bodies > 0) {
+		scene->forces.addMaxId(Body::id_t(bodies - 1));
+		scene->forces.sync();
+	}
+	const pendular::SummedArrays summed = pendular::summedArrays(scene->forces, bodies);
+	directParts.assign(size_t(threads), DirectPart {});
 	const auto t1 = Clock::now();
 
 	// As InteractionLoop: with a collider that does not erase interactions itself, the potential
@@ -370,6 +384,10 @@ void PendularLoop::action()
 		Counts c;
 		c.thread     = pendular::threadNumber();
 		teamComplete = pendular::teamSize() == threads;
+		if (summed.forces) {
+			const auto part              = pendular::partOf(bodyParts, bodies, c.thread, pendular::teamSize());
+			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
+		}
 		if (fast) {
 			// Each thread its part of the list (workParts): the entries whose first body is in its part of
 			// the bodies, which it gathered and will move.
@@ -432,7 +450,7 @@ void PendularLoop::action()
 	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns, threads);
 	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
-	flushForces(threads, parted);
+	flushForces(threads, parted, summed.forces != nullptr);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
@@ -460,8 +478,9 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
 				prefetchObject(&particles[ahead.id1]);
 				prefetchObject(&particles[ahead.id2]);
-				__builtin_prefetch(&threadForce[c.thread][ahead.id1], 1);
-				__builtin_prefetch(&threadForce[c.thread][ahead.id2], 1);
+				const DirectPart& direct = directParts[size_t(c.thread)];
+				__builtin_prefetch(direct.has(ahead.id1) ? &direct.forces[ahead.id1] : &threadForce[c.thread][ahead.id1], 1);
+				__builtin_prefetch(direct.has(ahead.id2) ? &direct.forces[ahead.id2] : &threadForce[c.thread][ahead.id2], 1);
 			}
 		} else if (ahead.record == Slot::none) {
 			const auto& J = interactions[ahead1];
@@ -1037,6 +1056,7 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.borders);
 	visit(loop.threadForce);
 	visit(loop.threadTorque);
+	visit(loop.directParts);
 	visit(loop.records);
 	visit(loop.recordInteractions);
 	visit(loop.invariants);
@@ -1271,7 +1291,7 @@ bool PendularLoop::applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const
 	const Particle&          p2 = particles[id2];
 	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
 		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), id1, id2 };
-	ThreadSink               sink { threadForce[thread].data(), threadTorque[thread].data(), id1, id2, isActive };
+	ThreadSink               sink { directParts[size_t(thread)], threadForce[thread].data(), threadTorque[thread].data(), id1, id2, isActive };
 	return r.law->apply(geom, phys, k, scene->dt, rotate, sink);
 }
 
@@ -1336,40 +1356,47 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 	if (I->isReal()) callbacksOn(*I, r);
 }
 
-void PendularLoop::flushForces(int threads, bool parted)
+void PendularLoop::flushForces(int threads, bool parted, bool direct)
 {
-	// Into the force container's summed arrays (addForceUnsynced), not through addForce: addForce
-	// writes the container's shared flag and its per-thread maximum ids at every call, and two
-	// threads doing so contend for those cache lines (it doubled this phase on two threads). sync()
-	// adds the per-thread buffers to the summed arrays (+=), so what others added before (summed
-	// here, as the integrator's sync would) or add after this step's flush is kept. addMaxId + sync
-	// make the summed arrays cover every body: sync resizes them whenever addMaxId raised an id.
+	// Into the force container's summed arrays, not through addForce: addForce writes the container's
+	// shared flag and its per-thread maximum ids at every call, and two threads doing so contend for those
+	// cache lines (it doubled this phase on two threads). sync() first adds what the dispatched functors
+	// of this pass added through addForce (as the integrator's sync would). direct: each thread of the
+	// pass added the forces of its part of the bodies straight into the summed arrays (see ThreadSink),
+	// which cover every body (the pass's addMaxId and sync).
 	ForceContainer& forces = scene->forces;
 	const long      n      = long(particles.size());
 	if (n == 0) return;
-	forces.addMaxId(Body::id_t(n - 1));
 	forces.sync();
-	// The summed arrays written directly (a call into libyade per body and array was a third of this phase).
 	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
-	const auto                   add    = [&forces, &summed](long id, const Vector3r& f, const Vector3r& t) {
-                if (f != Vector3r::Zero()) {
-                        if (summed.forces) summed.forces[id] += f;
-                        else
-                                forces.addForceUnsynced(Body::id_t(id), f);
-                }
-                if (t != Vector3r::Zero()) {
-                        if (summed.torques) summed.torques[id] += t;
-                        else
-                                forces.addTorqueUnsynced(Body::id_t(id), t);
-                }
+	// Through the calls only if the summed arrays are not at hand (a call into libyade per body and array
+	// was a third of this phase).
+	const auto add = [&forces, &summed](long id, const Vector3r& f, const Vector3r& t) {
+		if (f != Vector3r::Zero()) {
+			if (summed.forces) summed.forces[id] += f;
+			else
+				forces.addForceUnsynced(Body::id_t(id), f);
+		}
+		if (t != Vector3r::Zero()) {
+			if (summed.torques) summed.torques[id] += t;
+			else
+				forces.addTorqueUnsynced(Body::id_t(id), t);
+		}
 	};
-	// In one thread the sum per body is that of InteractionLoop's: the thread's sum. Each thread the
-	// bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once read: the
-	// arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in its cache.
-	// After a pass by parts (parted), array k holds forces only on the bodies of part k and of its
-	// borders: the other entries are exact zeros, and are neither read nor written (reading them moved
-	// every line of every array from the core that zeroed it to the other one at every step).
 	const long arrays = long(threadForce.size());
+	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays.
+	if (direct && arrays == 1) {
+		known.flushTeam     = 1;
+		known.forcesPending = false;
+		return;
+	}
+	// Each thread the bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once
+	// read: the arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in
+	// its cache. After a pass by parts (parted), array k holds forces only on the bodies of part k and of its
+	// borders, or only on its borders if that pass added part k's straight into the summed arrays (direct):
+	// the other entries are exact zeros, and are neither read nor written (reading them moved every line of
+	// every array from the core that zeroed it to the other one at every step). In one thread the sum per
+	// body is that of InteractionLoop's: the thread's sum.
 #ifdef YADE_OPENMP
 #pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies)
 #endif
@@ -1378,22 +1405,30 @@ void PendularLoop::flushForces(int threads, bool parted)
 		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
 		const bool byParts = parted && pendular::teamSize() == arrays;
 		if (thread == 0) known.flushTeam = pendular::teamSize();
-		// Per array, the next of its border bodies in this part.
-		std::vector<const Body::id_t*> next(size_t(arrays), nullptr), last(size_t(arrays), nullptr);
-		if (byParts)
-			for (long k = 0; k < arrays; ++k)
-				if (k != thread) {
-					const auto& ids = borders[size_t(k)][size_t(thread)];
-					next[size_t(k)] = ids.data();
-					last[size_t(k)] = ids.data() + ids.size();
+		if (byParts && direct) // the borders alone, array by array (a body's contributions in the order of the arrays)
+			for (long k = 0; k < arrays; ++k) {
+				if (k == thread) continue;
+				for (const Body::id_t id : borders[size_t(k)][size_t(thread)]) {
+					add(id, threadForce[k][id], threadTorque[k][id]);
+					threadForce[k][id] = threadTorque[k][id] = Vector3r::Zero();
 				}
-		if (arrays == 1) // one thread's arrays: no other to look into
+			}
+		else if (arrays == 1) // one thread's arrays: no other to look into
 			for (long id = part.first; id < part.second; ++id) {
 				const Vector3r f = threadForce[0][id], t = threadTorque[0][id];
 				threadForce[0][id] = threadTorque[0][id] = Vector3r::Zero();
 				add(id, f, t);
 			}
-		else
+		else {
+			// Per array, the next of its border bodies in this part.
+			std::vector<const Body::id_t*> next(size_t(arrays), nullptr), last(size_t(arrays), nullptr);
+			if (byParts)
+				for (long k = 0; k < arrays; ++k)
+					if (k != thread) {
+						const auto& ids = borders[size_t(k)][size_t(thread)];
+						next[size_t(k)] = ids.data();
+						last[size_t(k)] = ids.data() + ids.size();
+					}
 			for (long id = part.first; id < part.second; ++id) {
 				Vector3r f = Vector3r::Zero(), t = Vector3r::Zero();
 				for (long k = 0; k < arrays; ++k) {
@@ -1407,6 +1442,7 @@ void PendularLoop::flushForces(int threads, bool parted)
 				}
 				add(id, f, t);
 			}
+		}
 	}
 	known.forcesPending = false;
 }

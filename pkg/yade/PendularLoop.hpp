@@ -100,6 +100,13 @@ public:
 	static void guardReaders() { readersGuarded = true; }
 	// What this step's gathering read of every body (see pendular::BodyPointers).
 	const pendular::BodyPointers& gatheredBodies() const { return bodyPointers; }
+	// What one thread of the pass adds straight into the force container's summed arrays: the forces and
+	// torques of the bodies [first, last), its part (see ThreadSink in PendularLoop.cpp).
+	struct DirectPart {
+		Vector3r *forces = nullptr, *torques = nullptr;
+		long      first = 0, last = 0;
+		bool      has(Body::id_t id) const { return id >= first && id < last; }
+	};
 	// The threads of the last hand-over of the forces into the force container (0: none yet) and their parts
 	// of the bodies (see pendular::partOf): PendularForceResetter zeroes each part in the thread that wrote it.
 	int                      flushTeam() const { return known.flushTeam; }
@@ -191,8 +198,9 @@ private:
 	bool ownsStep(const Resolved& r) const;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
-	// parted: the pass computed the parts of work, each on its thread (see shareWork).
-	void flushForces(int threads, bool parted);
+	// parted: the pass computed the parts of work, each on its thread (see shareWork); direct: each thread
+	// added the forces of its part of the bodies into the force container itself (directParts).
+	void flushForces(int threads, bool parted, bool direct);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
 	// whether it was potential. Held by a weak_ptr and compared by owner (control block), not by
@@ -276,6 +284,7 @@ private:
 	bool apartByBound(const Slot& slot) const { return !known.fullCheck && slot.gapBound > 2 * known.epochDisplacement; }
 	// Per OpenMP thread, per body id; zero between steps (the flush zeroes what it read, see Known::forcesPending).
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque;
+	std::vector<DirectPart>            directParts; // per OpenMP thread of the pass
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
 	// two placeholders shared by all (so that YADE's collider sees it real) instead of its own ScGeom
