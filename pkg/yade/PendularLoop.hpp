@@ -196,6 +196,9 @@ private:
 	void settleRecords();
 	bool recordsAllowed(const Resolved& r) const;
 	bool ownsStep(const Resolved& r) const;
+	// The engine list ownsStep last looked at, and whether it has only known engines and this loop.
+	mutable std::vector<boost::weak_ptr<Engine>> ownedEngines;
+	mutable bool                                 enginesOwned = false;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
 	// parted: the pass computed the parts of work, each on its thread (see shareWork); direct: each thread
