@@ -42,7 +42,8 @@ void PendularIntegrator::findNewton()
 		// Between the PendularLoop and this engine, engines that change no body's State or Bound object,
 		// clump membership, flags or subdomain, nor the body container (the kinematic engines of our
 		// scenes set velocities only): then the loop's gathering stands for this engine's check.
-		static const std::set<std::string> harmless { "PendularCheck", "RotationEngine", "TranslationEngine", "NewtonIntegrator" };
+		static const std::set<std::string> harmless { "PendularCheck", "RotationEngine", "PendularRotationEngine", "TranslationEngine",
+		                                              "NewtonIntegrator" };
 		for (const auto& engine : scene->engines) {
 			if (engine.get() == this) before = false;
 			if (!engine) continue;

@@ -71,7 +71,7 @@ public:
 		"per-body function calls and with each body's State and Bound prefetched ahead (at the scale of Gladkyy 2014's "
 		"cell these objects do not fit in the caches, and NewtonIntegrator waits on them in turn). Each Body is read once per "
 		"step: the State and Bound pointers and the check for clumps come from the gathering of the :yref:`PendularLoop` before "
-		"it when the engines between them are only PendularCheck, RotationEngine, TranslationEngine and the NewtonIntegrator, "
+		"it when the engines between them are only PendularCheck, RotationEngine, PendularRotationEngine, TranslationEngine and the NewtonIntegrator, "
 		"else from a pass of its own. Its parameters are read "
 		"from the NewtonIntegrator (through Python, before O.run and after any of its damping, gravity, dampGravity, "
 		"exactAsphericalRot or mask is set; see refresh), so that the NewtonIntegrator stays the one place to set gravity and damping. "

@@ -675,7 +675,7 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	// The engines, by class name, once per engine list (the names' strings cost 1 µs per step on the ci cell).
 	if (!pendular::sameEngines(ownedEngines, scene->engines)) {
 		static const std::set<std::string> known { "ForceResetter", "PendularForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck",
-			                                   "NewtonIntegrator", "PendularIntegrator", "PyRunner", "RotationEngine" };
+			                                   "NewtonIntegrator", "PendularIntegrator", "PyRunner", "RotationEngine", "PendularRotationEngine" };
 		int  loops = 0; // another PendularLoop would take the placeholders of this one's records for objects
 		bool all   = true;
 		for (const auto& e : scene->engines) {

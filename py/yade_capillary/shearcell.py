@@ -201,12 +201,16 @@ def run_engines(info, loop="fused", integrator="pendular"):
     """Engines of the running cell: gravity, no numerical damping, the rotating walls turned about z
     with the configured period; `loop` and `integrator` as in scene.engines (loop: "fused", "standard" or an
     InteractionLoop, e.g. another law; integrator: "pendular" or "newton", the latter for yade.mpy)."""
-    from yade.wrapper import RotationEngine
+    from yade.wrapper import PendularRotationEngine, RotationEngine
 
     from .scene import engines
 
-    rotation = RotationEngine(ids=info["rotating"], rotationAxis=(0, 0, 1), angularVelocity=2 * math.pi / info["cfg"]["period"],
-                              rotateAroundZero=True, zeroPoint=(0, 0, 0))
+    # With our loop and integrator, PendularRotationEngine (RotationEngine's velocities, bit for bit, made in
+    # the thread that owns the wall's bodies); else YADE's own engines, as its users set them up.
+    ours = loop == "fused" and (integrator or "pendular") == "pendular"
+    rotation = (PendularRotationEngine if ours else RotationEngine)(ids=info["rotating"], rotationAxis=(0, 0, 1),
+                                                                    angularVelocity=2 * math.pi / info["cfg"]["period"],
+                                                                    rotateAroundZero=True, zeroPoint=(0, 0, 0))
     return engines(gravity=(0, 0, -info["cfg"].get("g", GRAVITY)), damping=0.0, loop=loop, extra=[rotation], integrator=integrator)
 
 
