@@ -371,6 +371,10 @@ void PendularLoop::action()
 	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
 	long       disorder = 0;
 	const long m        = fast ? long(work.size()) : size;
+	// A pass on the list by parts whose threads add their own bodies' forces into the container hands
+	// the borders over in its own parallel region (see handOverBorders), if the whole team runs it.
+	const bool partsReady = fast && summed.forces && long(workParts.size()) == threads + 1 && workParts.back() == m
+	        && long(borders.size()) == threads && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	// Static shares: each thread gets the same interactions in every run, so a run with a given number
 	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
 	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
@@ -402,6 +406,15 @@ void PendularLoop::action()
 				}
 				visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1,
 				      r, skipApart, recording, c);
+			}
+			// Every thread of the team takes this branch or none (the same team size): once all have
+			// computed their entries, each adds what the others computed for the bodies of its part.
+			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
+			if (partsReady && pendular::teamSize() == threads) {
+#ifdef YADE_OPENMP
+#pragma omp barrier
+#endif
+				handOverBorders(c.thread, summed);
 			}
 		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
@@ -450,7 +463,7 @@ void PendularLoop::action()
 	if (!fast) buildWork(skipFar && recording && skipApart, colliderRuns, threads);
 	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
-	flushForces(threads, parted, summed.forces != nullptr);
+	flushForces(threads, parted, summed.forces != nullptr, partsReady && teamComplete);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
@@ -1361,7 +1374,20 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 	if (I->isReal()) callbacksOn(*I, r);
 }
 
-void PendularLoop::flushForces(int threads, bool parted, bool direct)
+void PendularLoop::handOverBorders(int thread, const pendular::SummedArrays& summed)
+{
+	for (size_t k = 0; k < threadForce.size(); ++k) {
+		if (int(k) == thread) continue;
+		for (const Body::id_t id : borders[k][size_t(thread)]) {
+			Vector3r &f = threadForce[k][id], &t = threadTorque[k][id];
+			if (f != Vector3r::Zero()) summed.forces[id] += f;
+			if (t != Vector3r::Zero()) summed.torques[id] += t;
+			f = t = Vector3r::Zero();
+		}
+	}
+}
+
+void PendularLoop::flushForces(int threads, bool parted, bool direct, bool bordersDone)
 {
 	// Into the force container's summed arrays, not through addForce: addForce writes the container's
 	// shared flag and its per-thread maximum ids at every call, and two threads doing so contend for those
@@ -1389,9 +1415,10 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct)
 		}
 	};
 	const long arrays = long(threadForce.size());
-	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays.
-	if (direct && arrays == 1) {
-		known.flushTeam     = 1;
+	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays;
+	// several whose pass handed the borders over (bordersDone): nothing left in theirs.
+	if (direct && (arrays == 1 || bordersDone)) {
+		known.flushTeam     = int(arrays);
 		known.forcesPending = false;
 		return;
 	}
@@ -1410,14 +1437,7 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct)
 		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
 		const bool byParts = parted && pendular::teamSize() == arrays;
 		if (thread == 0) known.flushTeam = pendular::teamSize();
-		if (byParts && direct) // the borders alone, array by array (a body's contributions in the order of the arrays)
-			for (long k = 0; k < arrays; ++k) {
-				if (k == thread) continue;
-				for (const Body::id_t id : borders[size_t(k)][size_t(thread)]) {
-					add(id, threadForce[k][id], threadTorque[k][id]);
-					threadForce[k][id] = threadTorque[k][id] = Vector3r::Zero();
-				}
-			}
+		if (byParts && direct && summed.forces) handOverBorders(thread, summed);
 		else if (arrays == 1) // one thread's arrays: no other to look into
 			for (long id = part.first; id < part.second; ++id) {
 				const Vector3r f = threadForce[0][id], t = threadTorque[0][id];

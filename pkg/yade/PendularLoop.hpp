@@ -202,8 +202,13 @@ private:
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
 	// parted: the pass computed the parts of work, each on its thread (see shareWork); direct: each thread
-	// added the forces of its part of the bodies into the force container itself (directParts).
-	void flushForces(int threads, bool parted, bool direct);
+	// added the forces of its part of the bodies into the force container itself (directParts);
+	// bordersDone: and handed the borders over (handOverBorders) in the pass's parallel region.
+	void flushForces(int threads, bool parted, bool direct, bool bordersDone);
+	// Thread `thread` of a pass by parts adds into the container's summed arrays what the other threads'
+	// arrays hold for the bodies of its part (their borders with it), in the order of the arrays, and
+	// zeroes those entries.
+	void handOverBorders(int thread, const pendular::SummedArrays& summed);
 
 	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
 	// whether it was potential. Held by a weak_ptr and compared by owner (control block), not by
