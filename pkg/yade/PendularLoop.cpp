@@ -334,7 +334,7 @@ void PendularLoop::action()
 	sortPending = false;
 	threadForce.resize(threads);
 	threadTorque.resize(threads);
-	gather(threads); // also zeroes the force arrays
+	gather(threads); // also zeroes the force arrays after a step that ended before its flush
 	// The force container covers every body and its per-thread entries are summed (addMaxId, sync): the
 	// pass adds the forces of each thread's part of the bodies into its summed arrays (see ThreadSink).
 	const long bodies = long(particles.size());
@@ -371,10 +371,13 @@ void PendularLoop::action()
 	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
 	long       disorder = 0;
 	const long m        = fast ? long(work.size()) : size;
-	// A pass on the list by parts whose threads add their own bodies' forces into the container hands
-	// the borders over in its own parallel region (see handOverBorders), if the whole team runs it.
-	const bool partsReady = fast && summed.forces && long(workParts.size()) == threads + 1 && workParts.back() == m
-	        && long(borders.size()) == threads && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
+	// The parts of the bodies and of the list, and the borders, are those of this pass (shareWork made
+	// them for this list and these bodies; the pass does not change them). Then a pass on the list whose
+	// threads add their own bodies' forces into the container hands the borders over in its own parallel
+	// region (partsReady, see handOverBorders), if the whole team runs it.
+	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
+	        && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
+	const bool partsReady = partsValid && summed.forces;
 	// Static shares: each thread gets the same interactions in every run, so a run with a given number
 	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
 	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
@@ -440,8 +443,7 @@ void PendularLoop::action()
 	}
 	// The skipped entries, counted as the full pass counts them (apart by the bound).
 	// The flush may read the arrays by parts and borders (see flushForces).
-	const bool parted = fast && teamComplete && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
-	        && !bodyParts.empty() && bodyParts.back() == long(particles.size());
+	const bool parted = partsValid && teamComplete;
 	nSkipped = size - m;
 	fused += nSkipped;
 	apart += nSkipped;
@@ -1399,6 +1401,14 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct, bool borde
 	const long      n      = long(particles.size());
 	if (n == 0) return;
 	forces.sync();
+	const long arrays = long(threadForce.size());
+	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays;
+	// several whose pass handed the borders over (bordersDone): nothing left in theirs.
+	if (direct && (arrays == 1 || bordersDone)) {
+		known.flushTeam     = int(arrays);
+		known.forcesPending = false;
+		return;
+	}
 	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
 	// Through the calls only if the summed arrays are not at hand (a call into libyade per body and array
 	// was a third of this phase).
@@ -1414,14 +1424,6 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct, bool borde
 				forces.addTorqueUnsynced(Body::id_t(id), t);
 		}
 	};
-	const long arrays = long(threadForce.size());
-	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays;
-	// several whose pass handed the borders over (bordersDone): nothing left in theirs.
-	if (direct && (arrays == 1 || bordersDone)) {
-		known.flushTeam     = int(arrays);
-		known.forcesPending = false;
-		return;
-	}
 	// Each thread the bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once
 	// read: the arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in
 	// its cache. After a pass by parts (parted), array k holds forces only on the bodies of part k and of its
@@ -1437,8 +1439,7 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct, bool borde
 		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
 		const bool byParts = parted && pendular::teamSize() == arrays;
 		if (thread == 0) known.flushTeam = pendular::teamSize();
-		if (byParts && direct && summed.forces) handOverBorders(thread, summed);
-		else if (arrays == 1) // one thread's arrays: no other to look into
+		if (arrays == 1) // one thread's arrays: no other to look into
 			for (long id = part.first; id < part.second; ++id) {
 				const Vector3r f = threadForce[0][id], t = threadTorque[0][id];
 				threadForce[0][id] = threadTorque[0][id] = Vector3r::Zero();

@@ -29,11 +29,11 @@ void PendularRotationEngine::action()
 	const Vector3r    spin = rotationAxis * angularVelocity;
 	const Quaternionr q(AngleAxisr(angularVelocity * scene->dt, rotationAxis));
 	constexpr long    ahead = 8; // bodies ahead: the Body twice as far as its State, which is read from it
+	// The body of ids[j] if j is an index of ids and ids[j] a body's id (nullptr otherwise: nothing to prefetch).
+	const auto bodyAt = [&](long j) -> const Body* { return j < m && ids[j] >= 0 && ids[j] < n ? bodies[ids[j]].get() : nullptr; };
 	for (long k = 0; k < m; ++k) {
-		if (k + 2 * ahead < m && ids[k + 2 * ahead] >= 0 && ids[k + 2 * ahead] < n && bodies[ids[k + 2 * ahead]])
-			__builtin_prefetch(bodies[ids[k + 2 * ahead]].get());
-		if (k + ahead < m && ids[k + ahead] >= 0 && ids[k + ahead] < n && bodies[ids[k + ahead]])
-			pendular::prefetchObject<1>(bodies[ids[k + ahead]]->state.get());
+		if (const Body* b = bodyAt(k + 2 * ahead)) __builtin_prefetch(b);
+		if (const Body* b = bodyAt(k + ahead)) pendular::prefetchObject<1>(b->state.get());
 		const Body::id_t id = ids[k];
 		if (id < 0 || id >= n)
 			PendularCheck::raiseInStep(scene, "PendularRotationEngine: ids[" + std::to_string(k) + "] = " + std::to_string(id)
