@@ -21,6 +21,25 @@ void PendularRotationEngine::postLoad(PendularRotationEngine&)
 
 void PendularRotationEngine::action()
 {
+	if (turnedScene == scene && turnedIter == scene->iter) return; // PendularLoop did this step's (see turnAhead)
+	const long invalid = turn();
+	if (invalid >= 0)
+		PendularCheck::raiseInStep(scene, "PendularRotationEngine: ids[" + std::to_string(invalid) + "] = " + std::to_string(ids[invalid])
+		                                  + " is not a body id (0 to " + std::to_string(long(scene->bodies->body.size()) - 1) + ")");
+}
+
+bool PendularRotationEngine::turnAhead(Scene* current)
+{
+	scene = current;
+	if (turn() >= 0) return false; // the step's own call raises the error
+	turnedScene = scene;
+	turnedIter  = scene->iter;
+	++nAhead;
+	return true;
+}
+
+long PendularRotationEngine::turn()
+{
 	const auto& bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
 	const long  n      = long(bodies.size());
 	const long  m      = long(ids.size());
@@ -35,9 +54,7 @@ void PendularRotationEngine::action()
 		if (const Body* b = bodyAt(k + 2 * ahead)) __builtin_prefetch(b);
 		if (const Body* b = bodyAt(k + ahead)) pendular::prefetchObject<1>(b->state.get());
 		const Body::id_t id = ids[k];
-		if (id < 0 || id >= n)
-			PendularCheck::raiseInStep(scene, "PendularRotationEngine: ids[" + std::to_string(k) + "] = " + std::to_string(id)
-			                                  + " is not a body id (0 to " + std::to_string(n - 1) + ")");
+		if (id < 0 || id >= n) return k;
 		const Body* b = bodies[id].get();
 		if (!b) continue;
 		State& s = *b->state;
@@ -49,6 +66,7 @@ void PendularRotationEngine::action()
 			s.vel += Vector3r(newPos - s.pos) / scene->dt;
 		}
 	}
+	return -1;
 }
 
 } // namespace yade

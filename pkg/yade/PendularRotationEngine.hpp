@@ -12,6 +12,11 @@ class PendularRotationEngine : public GlobalEngine {
 public:
 	void action() override;
 	void postLoad(PendularRotationEngine&);
+	// This step's velocities, set by a PendularLoop ahead of the step's call of action() (which then does
+	// nothing), in the time its first thread would wait for the second one (see PendularLoop::action).
+	// False, with nothing to skip, if an id is not a body's: action() then raises the error. Never throws.
+	bool turnAhead(Scene* current);
+	void forgetAhead() { turnedIter = -1; }
 	DECLARE_LOGGER;
 
 	// clang-format off
@@ -29,10 +34,17 @@ public:
 		((Real, angularVelocity, 0, , "Angular velocity [rad/s]."))
 		((Vector3r, rotationAxis, Vector3r::UnitX(), Attr::triggerPostLoad, "Axis of rotation (a direction, normalized when set; a zero or non-finite vector raises ValueError) [-]."))
 		((bool, rotateAroundZero, false, , "If True, the bodies also turn about the axis through zeroPoint (their velocity is set), else they only spin about their centres [-]."))
-		((Vector3r, zeroPoint, Vector3r::Zero(), , "A point of the rotation axis, with rotateAroundZero [m].")),
+		((Vector3r, zeroPoint, Vector3r::Zero(), , "A point of the rotation axis, with rotateAroundZero [m]."))
+		((long, nAhead, 0, Attr::readonly, "Steps whose velocities a :yref:`PendularLoop` set ahead of this engine's turn, in the time its first thread would wait for the second one at the end of its pass (the engine's own step then does nothing) [-].")),
 		/*ctor*/
 	);
 	// clang-format on
+private:
+	// The step's velocities; the index in ids of an id that is not a body's (the bodies before it are
+	// set), else -1.
+	long         turn();
+	const Scene* turnedScene = nullptr;
+	long         turnedIter  = -1;
 };
 REGISTER_SERIALIZABLE(PendularRotationEngine);
 
