@@ -389,8 +389,7 @@ void PendularLoop::action()
 	scanTurners();
 	for (PendularRotationEngine* e : allTurners)
 		e->forgetAhead();
-	static const std::vector<PendularRotationEngine*> noTurners;
-	const auto& turnAhead = partsReady && known.workDispatched == 0 && known.bodiesKept ? turners : noTurners;
+	const bool turnAhead = partsReady && known.workDispatched == 0 && known.bodiesKept;
 	// Static shares: each thread gets the same interactions in every run, so a run with a given number
 	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
 	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
@@ -427,8 +426,8 @@ void PendularLoop::action()
 			// computed their entries, each adds what the others computed for the bodies of its part.
 			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
 			if (partsReady && pendular::teamSize() == threads) {
-				if (c.thread == 0)
-					for (PendularRotationEngine* e : turnAhead)
+				if (c.thread == 0 && turnAhead)
+					for (PendularRotationEngine* e : turners)
 						if (!e->dead && !e->turnAhead(scene)) break; // its own step raises the error, before the next one runs
 #ifdef YADE_OPENMP
 #pragma omp barrier

@@ -27,11 +27,16 @@ RMIN = 0.5e-3
 parallel = O.numThreads > 1
 
 
-def build(kind, around_zero, walls):
-    stress.box_packing(300, "willett_full", rmin=RMIN, ratio=2.0, box="walls", porosity=0.85, speed=1.0, friction=0.3)
+def packing(walls, **kw):
+    """300 wet spheres in a box of walls, the walls erased if not `walls` (no entry through the dispatchers)."""
+    stress.box_packing(300, "willett_full", rmin=RMIN, ratio=2.0, box="walls", porosity=0.85, speed=1.0, friction=0.3, **kw)
     if not walls:
         for b in [b for b in O.bodies if b.shape.__class__.__name__ == "Wall"]:
             O.bodies.erase(b.id)
+
+
+def build(kind, around_zero, walls):
+    packing(walls)
     spheres = [b.id for b in O.bodies if b.shape.__class__.__name__ == "Sphere"]
     turned = spheres[:10]
     for i in turned:
@@ -82,9 +87,7 @@ O.dt = scene.stable_dt(0.1)
 ck.raises(ValueError, lambda: O.run(1, True), ["PendularRotationEngine", "ids[1] = 1000000", "not a body id"], "an id beyond the bodies")
 # The same error where the loop sets the velocities ahead (no walls; on two threads): it leaves the step to the
 # engine, which raises it.
-stress.box_packing(300, "willett_full", rmin=RMIN, ratio=2.0, box="walls", porosity=0.85, speed=1.0, friction=0.3, gravity=(0, 0, 0))
-for b in [b for b in O.bodies if b.shape.__class__.__name__ == "Wall"]:
-    O.bodies.erase(b.id)
+packing(False, gravity=(0, 0, 0))
 turner = PendularRotationEngine(ids=[3], angularVelocity=1.0)
 O.engines = scene.engines(extra=[turner])
 for e in O.engines:
@@ -93,6 +96,8 @@ for e in O.engines:
 O.dt = scene.stable_dt(0.1)
 O.run(50, True)
 before = turner.nAhead
+ck.true(before > 0 if parallel else before == 0, "the loop set the velocities ahead in %d of the 50 steps before the error "
+        "(expected: some on two threads, none on one)" % before)
 turner.ids = [3, 10 ** 6]
 ck.raises(ValueError, lambda: O.run(1, True), ["PendularRotationEngine", "ids[1] = 1000000", "not a body id"],
           "an id beyond the bodies, after %d steps set ahead" % before)
