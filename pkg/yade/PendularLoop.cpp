@@ -41,6 +41,9 @@ namespace {
 	// get nearly equal shares of a short list (1024 gave one of two threads 4 chunks of the ci cell's 7,
 	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
 	constexpr long passChunk = 256;
+	// Entries a thread of a pass on the list takes at a time from its own part, and from another thread's
+	// (see action): fewer at the end, where two threads may take from the same part.
+	constexpr long ownChunk = 64, takenChunk = 16;
 
 	// What the gathering writes of a body, written only if changed: a line that the other threads read in
 	// a pass is written only after the other cores' copies are invalidated, which took most of the
@@ -380,8 +383,8 @@ void PendularLoop::action()
 	        && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	const bool partsReady = partsValid && summed.forces;
 	// The velocities of the PendularRotationEngines that follow, set by the first thread once it has
-	// computed its entries, in the time it would wait for the second one at the barrier (10-13 µs per step
-	// on the ci cell, where the rotation takes 6.4 µs). Their values depend only on the positions and dt,
+	// computed its own entries, before it takes what is left of the others' (the walls' bodies are in its
+	// part in our cells; 6.4 µs per step on the ci cell). Their values depend only on the positions and dt,
 	// which no engine changes before theirs, and no entry of this pass reads a State object (the fused ones
 	// read the gathered bodies; without entries through the dispatchers, as in the full pass that built
 	// the list, and with the same kinds of bodies, none joins them).
@@ -390,10 +393,17 @@ void PendularLoop::action()
 	for (PendularRotationEngine* e : allTurners)
 		e->forgetAhead();
 	const bool turnAhead = partsReady && known.workDispatched == 0 && known.bodiesKept;
-	// Static shares: each thread gets the same interactions in every run, so a run with a given number
-	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
-	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
-	// it (one half per thread left one thread idle a third of the time).
+	if (partsReady) {
+		cursors.resize(size_t(threads));
+		taken.resize(size_t(threads));
+		for (int t = 0; t < threads; ++t)
+			cursors[size_t(t)].next.store(workParts[size_t(t)], std::memory_order_relaxed);
+	}
+	// The list is shared by the parts of the bodies (shareWork), and a thread that has computed its part takes
+	// what is left of the others' (so a run on several threads differs from another by round-off, as with
+	// InteractionLoop's dynamic schedule); a full pass in interleaved static chunks of the container: real and
+	// potential interactions are not spread evenly over it (one half per thread left one thread idle a third
+	// of the time).
 	// teamComplete: each thread computed its part of the list (then the flush reads only parts and borders).
 	bool teamComplete = true;
 #ifdef YADE_OPENMP
@@ -408,31 +418,54 @@ void PendularLoop::action()
 			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
 		}
 		if (fast) {
-			// Each thread its part of the list (workParts): the entries whose first body is in its part of
-			// the bodies, which it gathered and will move.
-			const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
-			const long end  = part.second;
-			for (long k = part.first; k < end; ++k) {
-				// A third level for the list: its entries are not contiguous, so the hardware does not
-				// fetch the slots and container entries that the prefetches of visit() read.
-				if (k + 4 * prefetchAhead < end) {
-					__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
-					__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
+			// The entries [from, to) of the list; those after `to` up to `end` are prefetched.
+			const auto visitRange = [&](long from, long to, long end) {
+				for (long k = from; k < to; ++k) {
+					// A third level for the list: its entries are not contiguous, so the hardware does not
+					// fetch the slots and container entries that the prefetches of visit() read.
+					if (k + 4 * prefetchAhead < end) {
+						__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
+						__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
+					}
+					visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1,
+					      k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1, r, skipApart, recording, c);
 				}
-				visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1,
-				      r, skipApart, recording, c);
-			}
-			// Every thread of the team takes this branch or none (the same team size): once all have
-			// computed their entries, each adds what the others computed for the bodies of its part.
-			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
+			};
+			// Every thread of the team takes this branch or none (the same team size).
 			if (partsReady && pendular::teamSize() == threads) {
-				if (c.thread == 0 && turnAhead)
-					for (PendularRotationEngine* e : turners)
-						if (!e->dead && !e->turnAhead(scene)) break; // its own step raises the error, before the next one runs
+				// Each thread its part of the list (workParts): the entries of the bodies of its part, which it
+				// gathered and will move, in chunks taken from its cursor; then chunks of the other parts that
+				// their threads have not taken yet. The parts are even by estimated cost, but which thread ends
+				// first, and by how much, changes from step to step. A taken chunk's forces on bodies of other
+				// parts go to the thread's arrays, and the chunk's bodies to its list `taken`, for the hand-over.
+				taken[size_t(c.thread)].clear();
+				for (int i = 0; i < threads; ++i) {
+					const int  part  = (c.thread + i) % threads;
+					const long end   = workParts[size_t(part) + 1];
+					const long chunk = i == 0 ? ownChunk : takenChunk;
+					for (long from; (from = cursors[size_t(part)].next.fetch_add(chunk, std::memory_order_relaxed)) < end;) {
+						const long to = std::min(from + chunk, end);
+						if (i > 0)
+							for (long k = from; k < to; ++k) {
+								taken[size_t(c.thread)].push_back(slots[work[k]].id1);
+								taken[size_t(c.thread)].push_back(slots[work[k]].id2);
+							}
+						visitRange(from, to, i == 0 ? end : to);
+					}
+					// Its own part done: the rotations first (see turnAhead), then the others' chunks.
+					if (i == 0 && c.thread == 0 && turnAhead)
+						for (PendularRotationEngine* e : turners)
+							if (!e->dead && !e->turnAhead(scene)) break; // its own step raises the error, before the next one runs
+				}
+				// Once all have computed their entries, each adds what the others computed for the bodies of
+				// its part. A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
 #ifdef YADE_OPENMP
 #pragma omp barrier
 #endif
 				handOverBorders(c.thread, summed);
+			} else {
+				const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
+				visitRange(part.first, part.second, part.second);
 			}
 		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
@@ -625,30 +658,39 @@ void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
 }
 
 // The parts of the bodies and of the list of entries (bodyParts, workParts) for `threads` threads. Each
-// thread computes the listed entries whose first body is in its part of the bodies, and gathers, hands
-// over the forces of and moves (PendularIntegrator) the bodies of its part: a body's data then stays in
-// the cache of one core, except for the interactions that cross a part's border (13 % of the real ones
-// in the ci cell, whose ids grow with height). Without it, every step moved most bodies' lines from the
-// core that wrote them to the other one and back: on two threads each thread did its share of the pass
-// and of the gathering 20-50 % slower than one thread alone. The bodies are cut where the estimated cost
-// of the bodies and their entries is shared evenly; the list keeps the container's order within each
-// part, so that each thread sums the forces on a body in the same order at every step.
+// thread computes the listed entries whose bodies are in its part of the bodies (and half of those that
+// cross a border, see owner), and gathers, hands over the forces of and moves (PendularIntegrator) the
+// bodies of its part: a body's data then stays in the cache of one core, except for the interactions that
+// cross a part's border (13 % of the real ones in the ci cell, whose ids grow with height). Without it,
+// every step moved most bodies' lines from the core that wrote them to the other one and back: on two
+// threads each thread did its share of the pass and of the gathering 20-50 % slower than one thread alone.
+// The bodies are cut where the estimated cost of the bodies and their entries is shared evenly; the list
+// keeps the container's order within each part.
 void PendularLoop::shareWork(int threads)
 {
 	const long n = long(particles.size());
-	bodyParts.clear();
-	workParts.clear();
-	borders.clear();
-	if (threads < 2 || n == 0) return;
+	if (threads < 2 || n == 0) {
+		bodyParts.clear();
+		workParts.clear();
+		borders.clear();
+		return;
+	}
 	// Estimated cost of a body and its entries, in steps of a record: a body's gathering, hand-over and
 	// move together take about as long as a record's step (ci cell, 50 and 45 ns on one thread), a
 	// potential pair a distance check, an interaction through the dispatchers more than a record.
-	std::vector<float> cost(size_t(n), 1.f);
-	float              total = float(n);
+	// An entry's cost goes half to each of its bodies: an entry whose bodies are in two parts is computed
+	// by either part, half of them by each (see owner below).
+	const auto valid = [n](Body::id_t id) { return id >= 0 && id < n; };
+	shareCost.assign(size_t(n), 1.f);
+	float total = float(n);
 	for (const long i : work) {
 		const Slot& slot = slots[i];
 		const float c    = slot.recorded() ? 1.f : slot.potential() ? 0.25f : 2.f;
-		if (slot.id1 >= 0 && slot.id1 < n) cost[size_t(slot.id1)] += c;
+		if (valid(slot.id1) && valid(slot.id2)) {
+			shareCost[size_t(slot.id1)] += 0.5f * c;
+			shareCost[size_t(slot.id2)] += 0.5f * c;
+		} else if (valid(slot.id1))
+			shareCost[size_t(slot.id1)] += c;
 		total += c;
 	}
 	bodyParts.assign(size_t(threads) + 1, n);
@@ -656,35 +698,56 @@ void PendularLoop::shareWork(int threads)
 	float sum    = 0;
 	int   t      = 1;
 	for (long id = 0; id < n && t < threads; ++id) {
-		sum += cost[size_t(id)];
+		sum += shareCost[size_t(id)];
 		while (t < threads && sum >= total * float(t) / float(threads))
 			bodyParts[size_t(t++)] = id + 1;
 	}
-	// The part a body is in; the list, stably by the part of each entry's first body.
-	const auto partOfBody = [&](long id) { return int(std::upper_bound(bodyParts.begin() + 1, bodyParts.end() - 1, id) - (bodyParts.begin() + 1)); };
-	const auto owner      = [&](long i) { return partOfBody(slots[i].id1); };
+	// The part of each body, looked up once per entry and body below.
+	bodyPart.resize(size_t(n));
+	for (int k = 0; k < threads; ++k)
+		std::fill(bodyPart.begin() + bodyParts[size_t(k)], bodyPart.begin() + bodyParts[size_t(k) + 1], k);
+	const auto partOfBody = [&](Body::id_t id) { return id < 0 ? 0 : id >= n ? threads - 1 : bodyPart[size_t(id)]; };
+	// The part that computes an entry: its bodies' if they are in one part; else that of the first or the
+	// second body, by the parity of id1 + id2, so that each part hands over the forces of about as many
+	// border bodies as it receives (with the first body's part always, the upper part received them all:
+	// 10 µs per step on the ci cell after the pass's barrier, while the lower one waited).
+	const auto owner = [&](const Slot& slot) {
+		const int part1 = partOfBody(slot.id1);
+		if (!valid(slot.id2) || ((slot.id1 + slot.id2) & 1) == 0) return part1;
+		return partOfBody(slot.id2);
+	};
+	// The list, stably by the part of each entry; the bodies of other parts that each part's entries reach
+	// (borders, see flushForces), marked per body (one bit per part), so that the borders come out in
+	// ascending order without sorting.
+	const size_t     words = (size_t(threads) + 63) / 64;
+	std::vector<int> owners(work.size());
 	workParts.assign(size_t(threads) + 1, 0);
-	for (const long i : work)
-		++workParts[size_t(owner(i)) + 1];
+	for (size_t j = 0; j < work.size(); ++j) {
+		owners[j] = owner(slots[work[j]]);
+		++workParts[size_t(owners[j]) + 1];
+	}
 	for (int k = 0; k < threads; ++k)
 		workParts[size_t(k) + 1] += workParts[size_t(k)];
 	std::vector<long> next(workParts.begin(), workParts.end() - 1), shared(work.size());
-	for (const long i : work)
-		shared[size_t(next[size_t(owner(i))]++)] = i;
+	reachedBy.assign(size_t(n) * words, 0);
+	for (size_t j = 0; j < work.size(); ++j) {
+		const int   k    = owners[j];
+		const Slot& slot = slots[work[j]];
+		shared[size_t(next[size_t(k)]++)] = work[j];
+		for (const Body::id_t id : { slot.id1, slot.id2 })
+			if (valid(id) && bodyPart[size_t(id)] != k) reachedBy[size_t(id) * words + size_t(k) / 64] |= uint64_t(1) << (k % 64);
+	}
 	work.swap(shared);
-	// The bodies of other parts that each part's entries reach (see flushForces), by the part they are in.
-	borders.assign(size_t(threads), std::vector<std::vector<Body::id_t>>(size_t(threads)));
-	for (int k = 0; k < threads; ++k)
-		for (long j = workParts[size_t(k)]; j < workParts[size_t(k) + 1]; ++j)
-			for (const Body::id_t id : { slots[work[size_t(j)]].id1, slots[work[size_t(j)]].id2 }) {
-				const int part = partOfBody(id);
-				if (part != k && id >= 0 && id < n) borders[size_t(k)][size_t(part)].push_back(id);
-			}
-	for (auto& byPart : borders)
-		for (auto& ids : byPart) {
-			std::sort(ids.begin(), ids.end());
-			ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-		}
+	borders.resize(size_t(threads));
+	for (auto& byPart : borders) {
+		byPart.resize(size_t(threads));
+		for (auto& ids : byPart)
+			ids.clear();
+	}
+	for (long id = 0; id < n; ++id)
+		for (size_t w = 0; w < words; ++w)
+			for (uint64_t mask = reachedBy[size_t(id) * words + w]; mask != 0; mask &= mask - 1)
+				borders[w * 64 + size_t(__builtin_ctzll(mask))][size_t(bodyPart[size_t(id)])].push_back(Body::id_t(id));
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the
@@ -1108,6 +1171,11 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.bodyParts);
 	visit(loop.workParts);
 	visit(loop.borders);
+	visit(loop.shareCost);
+	visit(loop.bodyPart);
+	visit(loop.reachedBy);
+	visit(loop.cursors);
+	visit(loop.taken);
 	visit(loop.threadForce);
 	visit(loop.threadTorque);
 	visit(loop.directParts);
@@ -1420,6 +1488,20 @@ void PendularLoop::handOverBorders(int thread, const pendular::SummedArrays& sum
 			if (t != Vector3r::Zero()) summed.torques[id] += t;
 			f = t = Vector3r::Zero();
 		}
+		// The bodies of its part in the chunks thread k took from other parts (zeroed above if also borders).
+		const DirectPart& own = directParts[size_t(thread)];
+		for (const Body::id_t id : taken[k])
+			if (own.has(id)) {
+				Vector3r &f = threadForce[k][id], &t = threadTorque[k][id];
+				if (f != Vector3r::Zero()) {
+					summed.forces[id] += f;
+					f = Vector3r::Zero();
+				}
+				if (t != Vector3r::Zero()) {
+					summed.torques[id] += t;
+					t = Vector3r::Zero();
+				}
+			}
 	}
 }
 
