@@ -257,6 +257,20 @@ private:
 	// The container entries a pass of this epoch may have to visit (see buildWork; valid: Known says
 	// what for). Atomic: the wrapped Python paths drop it from other threads.
 	std::vector<long>                  work;
+	// What a full pass lists for work: per thread, the entries it listed; per chunk of the pass's schedule,
+	// the thread that visited it and the end of the chunk's entries in that thread's list (see buildWork).
+	struct ChunkEnd {
+		int  thread = 0;
+		long end    = 0;
+	};
+	std::vector<std::vector<long>> listed;
+	std::vector<ChunkEnd>          chunkEnds;
+	// A potential pair that a pass of this epoch skips: its bound on the gap exceeds `threshold`, twice the
+	// largest move of the epoch (see buildWork).
+	static bool listedOut(const Slot& slot, const shared_ptr<Interaction>& I, Real threshold)
+	{
+		return slot.potential() && slot.same(I) && Real(slot.gapBound) >= threshold;
+	}
 	std::atomic<bool>                  workValid { false };
 	// The threads' parts of the bodies and of work (see shareWork; empty: even parts); borders[k][t]: the
 	// bodies of part t that the entries of part k reach (ascending).
