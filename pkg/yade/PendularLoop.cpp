@@ -41,9 +41,6 @@ namespace {
 	// get nearly equal shares of a short list (1024 gave one of two threads 4 chunks of the ci cell's 7,
 	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
 	constexpr long passChunk = 256;
-	// Entries a thread of a pass on the list takes at a time from its own part, and from another thread's
-	// (see action): fewer at the end, where two threads may take from the same part.
-	constexpr long ownChunk = 64, takenChunk = 16;
 
 	// What the gathering writes of a body, written only if changed: a line that the other threads read in
 	// a pass is written only after the other cores' copies are invalidated, which took most of the
@@ -383,8 +380,8 @@ void PendularLoop::action()
 	        && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	const bool partsReady = partsValid && summed.forces;
 	// The velocities of the PendularRotationEngines that follow, set by the first thread once it has
-	// computed its own entries, before it takes what is left of the others' (the walls' bodies are in its
-	// part in our cells; 6.4 µs per step on the ci cell). Their values depend only on the positions and dt,
+	// computed its entries, in the time it would wait for the second one at the barrier (10-13 µs per step
+	// on the ci cell, where the rotation takes 6.4 µs). Their values depend only on the positions and dt,
 	// which no engine changes before theirs, and no entry of this pass reads a State object (the fused ones
 	// read the gathered bodies; without entries through the dispatchers, as in the full pass that built
 	// the list, and with the same kinds of bodies, none joins them).
@@ -393,17 +390,10 @@ void PendularLoop::action()
 	for (PendularRotationEngine* e : allTurners)
 		e->forgetAhead();
 	const bool turnAhead = partsReady && known.workDispatched == 0 && known.bodiesKept;
-	if (partsReady) {
-		cursors.resize(size_t(threads));
-		taken.resize(size_t(threads));
-		for (int t = 0; t < threads; ++t)
-			cursors[size_t(t)].next.store(workParts[size_t(t)], std::memory_order_relaxed);
-	}
-	// The list is shared by the parts of the bodies (shareWork), and a thread that has computed its part takes
-	// what is left of the others' (so a run on several threads differs from another by round-off, as with
-	// InteractionLoop's dynamic schedule); a full pass in interleaved static chunks of the container: real and
-	// potential interactions are not spread evenly over it (one half per thread left one thread idle a third
-	// of the time).
+	// Static shares: each thread gets the same interactions in every run, so a run with a given number
+	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
+	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
+	// it (one half per thread left one thread idle a third of the time).
 	// A full pass lists the entries that the passes of this epoch may have to visit (see buildWork) as it
 	// visits them, each thread those of its chunks (a list made after the pass read every slot again: 85 µs
 	// per full pass on the ci cell on one thread, 100 on two, where half the slots come from the other core).
@@ -431,54 +421,31 @@ void PendularLoop::action()
 			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
 		}
 		if (fast) {
-			// The entries [from, to) of the list; those after `to` up to `end` are prefetched.
-			const auto visitRange = [&](long from, long to, long end) {
-				for (long k = from; k < to; ++k) {
-					// A third level for the list: its entries are not contiguous, so the hardware does not
-					// fetch the slots and container entries that the prefetches of visit() read.
-					if (k + 4 * prefetchAhead < end) {
-						__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
-						__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
-					}
-					visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1,
-					      k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1, r, skipApart, recording, c);
+			// Each thread its part of the list (workParts): the entries whose first body is in its part of
+			// the bodies, which it gathered and will move.
+			const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
+			const long end  = part.second;
+			for (long k = part.first; k < end; ++k) {
+				// A third level for the list: its entries are not contiguous, so the hardware does not
+				// fetch the slots and container entries that the prefetches of visit() read.
+				if (k + 4 * prefetchAhead < end) {
+					__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
+					__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
 				}
-			};
-			// Every thread of the team takes this branch or none (the same team size).
+				visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1,
+				      r, skipApart, recording, c);
+			}
+			// Every thread of the team takes this branch or none (the same team size): once all have
+			// computed their entries, each adds what the others computed for the bodies of its part.
+			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
 			if (partsReady && pendular::teamSize() == threads) {
-				// Each thread its part of the list (workParts): the entries of the bodies of its part, which it
-				// gathered and will move, in chunks taken from its cursor; then chunks of the other parts that
-				// their threads have not taken yet. The parts are even by estimated cost, but which thread ends
-				// first, and by how much, changes from step to step. A taken chunk's forces on bodies of other
-				// parts go to the thread's arrays, and the chunk's bodies to its list `taken`, for the hand-over.
-				taken[size_t(c.thread)].clear();
-				for (int i = 0; i < threads; ++i) {
-					const int  part  = (c.thread + i) % threads;
-					const long end   = workParts[size_t(part) + 1];
-					const long chunk = i == 0 ? ownChunk : takenChunk;
-					for (long from; (from = cursors[size_t(part)].next.fetch_add(chunk, std::memory_order_relaxed)) < end;) {
-						const long to = std::min(from + chunk, end);
-						if (i > 0)
-							for (long k = from; k < to; ++k) {
-								taken[size_t(c.thread)].push_back(slots[work[k]].id1);
-								taken[size_t(c.thread)].push_back(slots[work[k]].id2);
-							}
-						visitRange(from, to, i == 0 ? end : to);
-					}
-					// Its own part done: the rotations first (see turnAhead), then the others' chunks.
-					if (i == 0 && c.thread == 0 && turnAhead)
-						for (PendularRotationEngine* e : turners)
-							if (!e->dead && !e->turnAhead(scene)) break; // its own step raises the error, before the next one runs
-				}
-				// Once all have computed their entries, each adds what the others computed for the bodies of
-				// its part. A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
+				if (c.thread == 0 && turnAhead)
+					for (PendularRotationEngine* e : turners)
+						if (!e->dead && !e->turnAhead(scene)) break; // its own step raises the error, before the next one runs
 #ifdef YADE_OPENMP
 #pragma omp barrier
 #endif
 				handOverBorders(c.thread, summed);
-			} else {
-				const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
-				visitRange(part.first, part.second, part.second);
 			}
 		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
@@ -674,14 +641,14 @@ void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
 }
 
 // The parts of the bodies and of the list of entries (bodyParts, workParts) for `threads` threads. Each
-// thread computes the listed entries whose bodies are in its part of the bodies (and half of those that
-// cross a border, see owner), and gathers, hands over the forces of and moves (PendularIntegrator) the
-// bodies of its part: a body's data then stays in the cache of one core, except for the interactions that
-// cross a part's border (13 % of the real ones in the ci cell, whose ids grow with height). Without it,
-// every step moved most bodies' lines from the core that wrote them to the other one and back: on two
-// threads each thread did its share of the pass and of the gathering 20-50 % slower than one thread alone.
-// The bodies are cut where the estimated cost of the bodies and their entries is shared evenly; the list
-// keeps the container's order within each part.
+// thread computes the listed entries whose first body is in its part of the bodies, and gathers, hands
+// over the forces of and moves (PendularIntegrator) the bodies of its part: a body's data then stays in
+// the cache of one core, except for the interactions that cross a part's border (13 % of the real ones
+// in the ci cell, whose ids grow with height). Without it, every step moved most bodies' lines from the
+// core that wrote them to the other one and back: on two threads each thread did its share of the pass
+// and of the gathering 20-50 % slower than one thread alone. The bodies are cut where the estimated cost
+// of the bodies and their entries is shared evenly; the list keeps the container's order within each
+// part, so that each thread sums the forces on a body in the same order at every step.
 void PendularLoop::shareWork(int threads)
 {
 	const long n = long(particles.size());
@@ -694,19 +661,13 @@ void PendularLoop::shareWork(int threads)
 	// Estimated cost of a body and its entries, in steps of a record: a body's gathering, hand-over and
 	// move together take about as long as a record's step (ci cell, 50 and 45 ns on one thread), a
 	// potential pair a distance check, an interaction through the dispatchers more than a record.
-	// An entry's cost goes half to each of its bodies: an entry whose bodies are in two parts is computed
-	// by either part, half of them by each (see owner below).
 	const auto valid = [n](Body::id_t id) { return id >= 0 && id < n; };
 	shareCost.assign(size_t(n), 1.f);
 	float total = float(n);
 	for (const long i : work) {
 		const Slot& slot = slots[i];
 		const float c    = slot.recorded() ? 1.f : slot.potential() ? 0.25f : 2.f;
-		if (valid(slot.id1) && valid(slot.id2)) {
-			shareCost[size_t(slot.id1)] += 0.5f * c;
-			shareCost[size_t(slot.id2)] += 0.5f * c;
-		} else if (valid(slot.id1))
-			shareCost[size_t(slot.id1)] += c;
+		if (valid(slot.id1)) shareCost[size_t(slot.id1)] += c;
 		total += c;
 	}
 	bodyParts.assign(size_t(threads) + 1, n);
@@ -723,33 +684,21 @@ void PendularLoop::shareWork(int threads)
 	for (int k = 0; k < threads; ++k)
 		std::fill(bodyPart.begin() + bodyParts[size_t(k)], bodyPart.begin() + bodyParts[size_t(k) + 1], k);
 	const auto partOfBody = [&](Body::id_t id) { return id < 0 ? 0 : id >= n ? threads - 1 : bodyPart[size_t(id)]; };
-	// The part that computes an entry: its bodies' if they are in one part; else that of the first or the
-	// second body, by the parity of id1 + id2, so that each part hands over the forces of about as many
-	// border bodies as it receives (with the first body's part always, the upper part received them all:
-	// 10 µs per step on the ci cell after the pass's barrier, while the lower one waited).
-	const auto owner = [&](const Slot& slot) {
-		const int part1 = partOfBody(slot.id1);
-		if (!valid(slot.id2) || ((slot.id1 + slot.id2) & 1) == 0) return part1;
-		return partOfBody(slot.id2);
-	};
-	// The list, stably by the part of each entry; the bodies of other parts that each part's entries reach
-	// (borders, see flushForces), marked per body (one bit per part), so that the borders come out in
-	// ascending order without sorting.
-	const size_t     words = (size_t(threads) + 63) / 64;
-	std::vector<int> owners(work.size());
+	// The list, stably by the part of each entry's first body; the bodies of other parts that each part's
+	// entries reach (borders, see flushForces), marked per body (one bit per part), so that the borders come
+	// out in ascending order without sorting.
+	const size_t words = (size_t(threads) + 63) / 64;
 	workParts.assign(size_t(threads) + 1, 0);
-	for (size_t j = 0; j < work.size(); ++j) {
-		owners[j] = owner(slots[work[j]]);
-		++workParts[size_t(owners[j]) + 1];
-	}
+	for (const long i : work)
+		++workParts[size_t(partOfBody(slots[i].id1)) + 1];
 	for (int k = 0; k < threads; ++k)
 		workParts[size_t(k) + 1] += workParts[size_t(k)];
 	std::vector<long> next(workParts.begin(), workParts.end() - 1), shared(work.size());
 	reachedBy.assign(size_t(n) * words, 0);
-	for (size_t j = 0; j < work.size(); ++j) {
-		const int   k    = owners[j];
-		const Slot& slot = slots[work[j]];
-		shared[size_t(next[size_t(k)]++)] = work[j];
+	for (const long i : work) {
+		const Slot& slot = slots[i];
+		const int   k    = partOfBody(slot.id1);
+		shared[size_t(next[size_t(k)]++)] = i;
 		for (const Body::id_t id : { slot.id1, slot.id2 })
 			if (valid(id) && bodyPart[size_t(id)] != k) reachedBy[size_t(id) * words + size_t(k) / 64] |= uint64_t(1) << (k % 64);
 	}
@@ -1192,8 +1141,6 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.shareCost);
 	visit(loop.bodyPart);
 	visit(loop.reachedBy);
-	visit(loop.cursors);
-	visit(loop.taken);
 	visit(loop.threadForce);
 	visit(loop.threadTorque);
 	visit(loop.directParts);
@@ -1506,20 +1453,6 @@ void PendularLoop::handOverBorders(int thread, const pendular::SummedArrays& sum
 			if (t != Vector3r::Zero()) summed.torques[id] += t;
 			f = t = Vector3r::Zero();
 		}
-		// The bodies of its part in the chunks thread k took from other parts (zeroed above if also borders).
-		const DirectPart& own = directParts[size_t(thread)];
-		for (const Body::id_t id : taken[k])
-			if (own.has(id)) {
-				Vector3r &f = threadForce[k][id], &t = threadTorque[k][id];
-				if (f != Vector3r::Zero()) {
-					summed.forces[id] += f;
-					f = Vector3r::Zero();
-				}
-				if (t != Vector3r::Zero()) {
-					summed.torques[id] += t;
-					t = Vector3r::Zero();
-				}
-			}
 	}
 }
 

@@ -281,15 +281,6 @@ private:
 	std::vector<float>                               shareCost;
 	std::vector<int>                                 bodyPart;
 	std::vector<uint64_t>                            reachedBy;
-	// Per thread of a pass on the list: the next entry of its part that no thread has taken yet (one cache
-	// line each), and the bodies of the entries it took from other parts (see action).
-	struct alignas(64) Cursor {
-		std::atomic<long> next { 0 };
-		Cursor() = default;
-		Cursor(const Cursor&) { } // for std::vector::resize; every pass sets next before it reads it
-	};
-	std::vector<Cursor>                  cursors;
-	std::vector<std::vector<Body::id_t>> taken;
 	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
 	// freed (freeArrays) starts again from these values, as a new loop.
 	struct Known {
