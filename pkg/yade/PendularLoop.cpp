@@ -463,7 +463,7 @@ void PendularLoop::action()
 				before    = i;
 				beforeKey = key;
 				if (listing) {
-					if (!listedOut(slot, interactions[i], threshold)) listed[size_t(c.thread)].push_back(i);
+					if (!listedOut(slot, threshold)) listed[size_t(c.thread)].push_back(i);
 					if ((i + 1) % passChunk == 0 || i + 1 == size) chunkEnds[size_t(i / passChunk)] = ChunkEnd { c.thread, long(listed[size_t(c.thread)].size()) };
 				}
 			}

@@ -266,11 +266,9 @@ private:
 	std::vector<std::vector<long>> listed;
 	std::vector<ChunkEnd>          chunkEnds;
 	// A potential pair that a pass of this epoch skips: its bound on the gap exceeds `threshold`, twice the
-	// largest move of the epoch (see buildWork).
-	static bool listedOut(const Slot& slot, const shared_ptr<Interaction>& I, Real threshold)
-	{
-		return slot.potential() && slot.same(I) && Real(slot.gapBound) >= threshold;
-	}
+	// largest move of the epoch (see buildWork). Asked of a slot just visited, which holds its entry's
+	// interaction (visit makes it so).
+	static bool listedOut(const Slot& slot, Real threshold) { return slot.potential() && Real(slot.gapBound) >= threshold; }
 	std::atomic<bool>                  workValid { false };
 	// The threads' parts of the bodies and of work (see shareWork; empty: even parts); borders[k][t]: the
 	// bodies of part t that the entries of part k reach (ascending).
