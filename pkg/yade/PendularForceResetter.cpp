@@ -2,6 +2,7 @@
 #include "PendularLoop.hpp"
 
 #include <core/EnergyTracker.hpp>
+#include <pkg/common/InsertionSortCollider.hpp>
 
 #include <algorithm>
 #include <limits>
@@ -10,15 +11,6 @@ namespace yade {
 
 YADE_PLUGIN((PendularForceResetter));
 CREATE_LOGGER(PendularForceResetter);
-
-namespace {
-	// entries [first, last) of v set to zero, as the Reals they are (YADE asserts sizeof(Vector3r) == 3 sizeof(Real)),
-	// which the compiler makes one memset as ForceContainer::reset's (a fill by Vector3r took 3 µs instead of 1 on the ci cell).
-	void zero(Vector3r* v, long first, long last)
-	{
-		if (last > first) std::fill_n(v[first].data(), 3 * (last - first), Real(0));
-	}
-} // namespace
 
 std::string PendularForceResetter::unsupported(const PendularLoop* l, long n, long& size, pendular::SummedArrays& summed)
 {
@@ -48,11 +40,17 @@ void PendularForceResetter::action()
 {
 	if (!pendular::sameEngines(scannedEngines, scene->engines)) {
 		loop.reset();
-		for (const auto& engine : scene->engines)
+		loopNext         = false;
+		bool followsThis = false, onlyColliders = true;
+		for (const auto& engine : scene->engines) {
 			if (dynamic_cast<const PendularLoop*>(engine.get())) {
-				loop = engine;
+				loop     = engine;
+				loopNext = followsThis && onlyColliders;
 				break;
 			}
+			if (followsThis && !dynamic_cast<const InsertionSortCollider*>(engine.get())) onlyColliders = false;
+			followsThis = followsThis || engine.get() == this;
+		}
 	}
 	const PendularLoop* l = loop && !loop->dead ? static_cast<const PendularLoop*>(loop.get()) : nullptr;
 	const long          n = long(scene->bodies->size());
@@ -65,6 +63,16 @@ void PendularForceResetter::action()
 		ForceResetter::action();
 		return;
 	}
+	// What ForceContainer::reset sets besides the arrays: synced stays true (no permanent forces, and the
+	// per-thread arrays were emptied by the last sync); its private permForceSynced matters only for
+	// permanent forces, and a step with those is handed over.
+	scene->forces.lastReset = scene->iter;
+	if (scene->trackEnergy) scene->energy->resetResettables();
+	if (loopNext && !scene->subStepping) { // sub-steps let Python read the forces between the engines
+		++nDeferred;
+		static_cast<PendularLoop*>(loop.get())->takeReset(scene, size);
+		return;
+	}
 	// Each thread of the loop's last hand-over zeroes the part of the bodies it wrote (PendularLoop::flushForces),
 	// so that those cache lines stay in its core.
 	const std::vector<long>& parts = l->flushParts();
@@ -73,16 +81,11 @@ void PendularForceResetter::action()
 #endif
 	{
 		const auto part = pendular::partOf(parts, n, pendular::threadNumber(), pendular::teamSize());
-		zero(summed.forces, part.first, part.second);
-		zero(summed.torques, part.first, part.second);
+		pendular::zeroEntries(summed.forces, part.first, part.second);
+		pendular::zeroEntries(summed.torques, part.first, part.second);
 	}
-	zero(summed.forces, n, size); // entries of no body
-	zero(summed.torques, n, size);
-	// What ForceContainer::reset sets besides the arrays: synced stays true (no permanent forces, and the
-	// per-thread arrays were emptied by the last sync); its private permForceSynced matters only for
-	// permanent forces, and a step with those is handed over.
-	scene->forces.lastReset = scene->iter;
-	if (scene->trackEnergy) scene->energy->resetResettables();
+	pendular::zeroEntries(summed.forces, n, size); // entries of no body
+	pendular::zeroEntries(summed.torques, n, size);
 }
 
 } // namespace yade

@@ -209,6 +209,15 @@ void PendularLoop::gather(int threads)
 	shared_ptr<Material>      heldMaterial;
 	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
 	epoch.resize(n);
+	// The force container's reset handed over by PendularForceResetter (takeReset): each thread zeroes the
+	// summed forces and torques of its part of the bodies below (the cache lines it writes in the pass and
+	// reads in PendularIntegrator), the entries of no body after it. ForceContainer::reset if the arrays
+	// are no longer at hand (the resetter found them so; only colliders ran since).
+	const bool                   resetting = pendingReset.scene == scene && pendingReset.iter == scene->iter;
+	const long                   resetSize = pendingReset.size;
+	const pendular::SummedArrays reset     = resetting ? pendular::summedArrays(scene->forces, resetSize) : pendular::SummedArrays {};
+	pendingReset                           = PendingReset {};
+	if (resetting && !reset.forces) scene->forces.reset(scene->iter);
 	// Each thread its part of the bodies (bodyParts): the part whose interactions it computes in the pass.
 #ifdef YADE_OPENMP
 #pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) \
@@ -216,6 +225,10 @@ void PendularLoop::gather(int threads)
 #endif
 	{
 	const auto part = pendular::partOf(bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
+	if (reset.forces) {
+		pendular::zeroEntries(reset.forces, part.first, part.second);
+		pendular::zeroEntries(reset.torques, part.first, part.second);
+	}
 	for (size_t id = size_t(part.first); id < size_t(part.second); ++id) {
 		// Two levels: the Body, then, once it is cached, its State and Shape (a sphere's radius is on
 		// the Shape's second cache line).
@@ -276,6 +289,10 @@ void PendularLoop::gather(int threads)
 		restart  = math::max(restart, int(epoch[id].radius != q.radius));
 		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
 	}
+	}
+	if (reset.forces) {
+		pendular::zeroEntries(reset.forces, long(n), resetSize);
+		pendular::zeroEntries(reset.torques, long(n), resetSize);
 	}
 	bodyPointers.clumps     = clumps;
 	bodyPointers.aspherical = aspherical;

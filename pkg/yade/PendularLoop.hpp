@@ -113,6 +113,9 @@ public:
 	// of the bodies (see pendular::partOf): PendularForceResetter zeroes each part in the thread that wrote it.
 	int                      flushTeam() const { return known.flushTeam; }
 	const std::vector<long>& flushParts() const { return bodyParts; }
+	// The force container's reset of this step, to be done by the gathering (each thread zeroes its part of the
+	// bodies), from PendularForceResetter when only colliders run between them; size: the container's entries.
+	void takeReset(const Scene* s, long size) { pendingReset = PendingReset { s, s->iter, size }; }
 	DECLARE_LOGGER;
 
 private:
@@ -314,6 +317,12 @@ private:
 		int flushTeam = 0;
 	};
 	Known                              known;
+	// The reset that takeReset handed to this step's gathering (scene nullptr: none).
+	struct PendingReset {
+		const Scene* scene = nullptr;
+		long         iter = -1, size = 0;
+	};
+	PendingReset pendingReset;
 	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have
 	// moved since, is still positive (see gather), so nothing of it is read but the slot.
 	bool apartByBound(const Slot& slot) const { return !known.fullCheck && slot.gapBound > 2 * known.epochDisplacement; }

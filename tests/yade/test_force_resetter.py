@@ -18,6 +18,10 @@
 #   bit-identical (the container unsorted, sortDisorder = 0, as in test_loop.py; before the forces went
 #   straight into the container, the force added before the loop came last: 5.2e-17 of the scale). On
 #   two threads the sums differ in order: bound 1e-9 of the scale as in test_loop.py.
+# - Where only the collider stands between the reset and the loop (scene.engines), the loop's gathering
+#   zeroes the forces (nDeferred counts those steps: every step not handed over); with the PyRunner between
+#   them, none. With O.subStepping, Python can read the forces between the engines: the reset is then the
+#   resetter's own, and every force is zero after its sub-step.
 from yade import O
 from yade.utils import sphere
 from yade.wrapper import ForceResetter, PendularForceResetter, PyRunner
@@ -91,16 +95,34 @@ for case, why in (("plain", None), ("perm", "permanent forces"), ("after", "forc
         # The first step has no hand-over of the loop to share by; a grown container is handed over.
         ok = resetter.nHandedOver == 1 if case == "plain" else 1 <= resetter.nHandedOver < STEPS
         ck.true(ok, "%s: steps handed to ForceContainer::reset: %d (%r)" % (case, resetter.nHandedOver, resetter.handedOverBecause))
+        ck.true(resetter.nDeferred == STEPS - resetter.nHandedOver, "%s: steps whose forces the loop's gathering zeroed: %d, every step not handed "
+                "over (%d of %d)" % (case, resetter.nDeferred, STEPS - resetter.nHandedOver, STEPS))
     else:
         # every step but the first of a PyRunner (which does not run at iteration 0): all STEPS or STEPS - 1
         ck.true(resetter.nHandedOver >= STEPS - 1 and why in resetter.handedOverBecause,
                 "%s: every step handed to ForceContainer::reset because of %s: %d, %r" % (case, why, resetter.nHandedOver, resetter.handedOverBecause))
 
 ref, _ = build("yade", loop="standard", case="before")
-got, _ = build("pendular", loop="fused", case="before")
+got, resetter = build("pendular", loop="fused", case="before")
+ck.true(resetter.nDeferred == 0, "force added before the loop: a PyRunner between the reset and the loop, no step's reset left to the loop (%d)" % resetter.nDeferred)
 if parallel:
     ck.true(worst(ref, got) <= BOUND, "force added before the loop, %s: PendularLoop within %g of InteractionLoop (worst %.3g)" % (threads, BOUND, worst(ref, got)))
 else:
     ck.true(got == ref, "force added before the loop, %s: PendularLoop bit-identical to InteractionLoop (worst difference %.3g of the scale)"
             % (threads, worst(ref, got)))
+
+# Sub-steps: the forces of the last step are there before the reset's sub-step, zero after it.
+build("pendular")
+deferred = O.engines[0].nDeferred
+nonzero = lambda: sum(1 for b in O.bodies if O.forces.f(b.id).norm() > 0 or O.forces.t(b.id).norm() > 0)
+before = nonzero()
+O.subStepping = True
+O.step()  # the prologue
+O.step()  # the reset
+after, engine = nonzero(), O.subStep
+O.subStepping = False
+O.step()  # the rest of the step
+ck.true(before > 0 and after == 0 and engine == 1 and O.engines[0].nDeferred == deferred,
+        "sub-steps: %d bodies with a force or torque before the reset, %d after its sub-step (next: %d, the collider), no reset left to the loop (%d more)"
+        % (before, after, engine, O.engines[0].nDeferred - deferred))
 ck.finish()
