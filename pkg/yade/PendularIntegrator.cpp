@@ -188,7 +188,13 @@ void PendularIntegrator::action()
 	bool              fatal   = false;
 	const std::string why     = unsupported(p, threads, fatal);
 	if (fatal) PendularCheck::raiseInStep(scene, why);
+	// The velocities left to this step by the PendularRotationEngines before it (takeTurn).
+	const bool turning = turns.scene == scene && turns.iter == scene->iter && !turns.engines.empty();
 	if (!why.empty()) {
+		if (turning)
+			for (PendularRotationEngine* e : turns.engines)
+				e->turnNow(); // their ids were checked when they left the step
+		turns.engines.clear();
 		if (why != handedOverBecause) LOG_INFO("PendularIntegrator: the NewtonIntegrator does the step (" << why << ")");
 		handedOverBecause = why;
 		++nHandedOver;
@@ -198,7 +204,12 @@ void PendularIntegrator::action()
 		return;
 	}
 	const auto start = std::chrono::steady_clock::now();
-	const Real flag  = integrate(p, *bodies, threads);
+	std::vector<PendularRotationEngine::Motion> motions;
+	if (turning)
+		for (const PendularRotationEngine* e : turns.engines)
+			motions.push_back(e->motion(scene->dt));
+	const Real flag = integrate(p, *bodies, threads, turning ? turnerOf(long(bodies->states.size())) : nullptr, motions.data());
+	turns.engines.clear();
 	bodiesTime += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
 	if (flagOffset >= 0) {
 		std::memcpy(reinterpret_cast<char*>(newton.get()) + flagOffset, &flag, sizeof(Real));
@@ -217,7 +228,26 @@ void PendularIntegrator::action()
 // energy tracking, density scaling or mask, in its order of operations (the same numbers bit for bit:
 // tests/yade/test_integrator.py). Returns what NewtonIntegrator leaves in maxVelocitySq: the largest
 // over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
-Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads)
+const int* PendularIntegrator::turnerOf(long n)
+{
+	bool same = turnedBy == turns.engines && long(turnerIndex.size()) == n;
+	for (size_t k = 0; same && k < turnedBy.size(); ++k)
+		same = turnedIds[k] == turnedBy[k]->ids;
+	if (!same) {
+		turnedBy = turns.engines;
+		turnedIds.clear();
+		turnerIndex.assign(size_t(n), -1);
+		for (size_t k = 0; k < turnedBy.size(); ++k) {
+			turnedIds.push_back(turnedBy[k]->ids);
+			for (const Body::id_t id : turnedBy[k]->ids)
+				if (id >= 0 && id < n) turnerIndex[size_t(id)] = int(k);
+		}
+	}
+	return turnerIndex.data();
+}
+
+Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads, const int* turner,
+                                   const PendularRotationEngine::Motion* motions)
 {
 	const long          n      = long(bodies.states.size());
 	State* const*       states = bodies.states.data();
@@ -242,7 +272,10 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 			if (bounds[id + prefetchAhead]) __builtin_prefetch(bounds[id + prefetchAhead]);
 		}
 		if (!states[id]) continue; // an erased body
-		State&         s       = *states[id];
+		State& s = *states[id];
+		// PendularRotationEngine's velocities (RotationEngine's operations), left to this pass: the same as
+		// its own step before this one, as nothing between them reads or changes the State.
+		if (turner && turner[id] >= 0) PendularRotationEngine::setVelocities(s, motions[turner[id]], dt);
 		const Vector3r f       = forces.getForce(Body::id_t(id));
 		const Vector3r m       = forces.getTorque(Body::id_t(id));
 		const unsigned blocked = s.blockedDOFs;

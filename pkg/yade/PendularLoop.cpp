@@ -1,5 +1,4 @@
 #include "PendularLoop.hpp"
-#include "PendularRotationEngine.hpp"
 #include "Passes.hpp"
 
 #include <pkg/common/Facet.hpp>
@@ -396,17 +395,6 @@ void PendularLoop::action()
 	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
 	        && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	const bool partsReady = partsValid && summed.forces;
-	// The velocities of the PendularRotationEngines that follow, set by the first thread once it has
-	// computed its entries, in the time it would wait for the second one at the barrier (10-13 µs per step
-	// on the ci cell, where the rotation takes 6.4 µs). Their values depend only on the positions and dt,
-	// which no engine changes before theirs, and no entry of this pass reads a State object (the fused ones
-	// read the gathered bodies; without entries through the dispatchers, as in the full pass that built
-	// the list, and with the same kinds of bodies, none joins them).
-	// A step retried after an error (the same iter) has them set again or by their own steps.
-	scanTurners();
-	for (PendularRotationEngine* e : allTurners)
-		e->forgetAhead();
-	const bool turnAhead = partsReady && known.workDispatched == 0 && known.bodiesKept;
 	// Static shares: each thread gets the same interactions in every run, so a run with a given number
 	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
 	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
@@ -456,9 +444,6 @@ void PendularLoop::action()
 			// computed their entries, each adds what the others computed for the bodies of its part.
 			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
 			if (partsReady && pendular::teamSize() == threads) {
-				if (c.thread == 0 && turnAhead)
-					for (PendularRotationEngine* e : turners)
-						if (!e->dead && !e->turnAhead(scene)) break; // its own step raises the error, before the next one runs
 #ifdef YADE_OPENMP
 #pragma omp barrier
 #endif
@@ -512,10 +497,7 @@ void PendularLoop::action()
 	known.seenDt         = scene->dt; // what the records' shearInc now follows from (recordShearInc)
 	known.seenRatcheting = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
 	settleRecords();
-	if (!fast) {
-		buildWork(listing, colliderRuns, threads);
-		known.workDispatched = dispatchedCount;
-	}
+	if (!fast) buildWork(listing, colliderRuns, threads);
 	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
 	flushForces(threads, parted, summed.forces != nullptr, partsReady && teamComplete);
@@ -763,22 +745,6 @@ bool PendularLoop::ownsStep(const Resolved&) const
 		enginesOwned = all && loops == 1;
 	}
 	return enginesOwned;
-}
-
-void PendularLoop::scanTurners()
-{
-	if (pendular::sameEngines(turnersScanned, scene->engines)) return;
-	turners.clear();
-	allTurners.clear();
-	bool following = false;
-	for (const auto& e : scene->engines) {
-		auto* turner = dynamic_cast<PendularRotationEngine*>(e.get());
-		if (turner) allTurners.push_back(turner);
-		if (following && turner) turners.push_back(turner);
-		else if (following && !(e && e->getClassName() == "PendularCheck"))
-			following = false;
-		following = following || e.get() == this;
-	}
 }
 
 // A real sphere-sphere interaction of the fused pass whose state fits a Record: a fixed-volume

@@ -16,7 +16,6 @@
 
 namespace yade {
 
-class PendularRotationEngine;
 
 class PendularLoop : public InteractionLoop {
 public:
@@ -204,12 +203,6 @@ private:
 	// The engine list ownsStep last looked at, and whether it has only known engines and this loop.
 	mutable std::vector<boost::weak_ptr<Engine>> ownedEngines;
 	mutable bool                                 enginesOwned = false;
-	// The PendularRotationEngines of the engine list (allTurners) and those of them that follow this loop
-	// with only PendularCheck between them (turners), in their order (see action), for the list last
-	// looked at (scanTurners).
-	void                                 scanTurners();
-	std::vector<boost::weak_ptr<Engine>> turnersScanned;
-	std::vector<PendularRotationEngine*> turners, allTurners;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
 	// parted: the pass computed the parts of work, each on its thread (see shareWork); direct: each thread
@@ -297,8 +290,6 @@ private:
 		long                        workEpoch = -1, workColliderRuns = -1;
 		const InteractionContainer* workContainer = nullptr;
 		size_t                      workSize      = 0;
-		// Entries of the full pass that built work which went through the dispatchers (they read State objects).
-		long workDispatched = 0;
 		// The collider's runs and the container the slots of the records were last matched to (reconcile).
 		long                        reconciledRuns      = -1;
 		const InteractionContainer* reconciledContainer = nullptr;

@@ -1,6 +1,7 @@
 #include "PendularRotationEngine.hpp"
 #include "Passes.hpp"
 #include "Pendular.hpp"
+#include "PendularIntegrator.hpp"
 
 #include <stdexcept>
 
@@ -21,33 +22,59 @@ void PendularRotationEngine::postLoad(PendularRotationEngine&)
 
 void PendularRotationEngine::action()
 {
-	if (turnedScene == scene && turnedIter == scene->iter) return; // PendularLoop did this step's (see turnAhead)
+	// The PendularIntegrator after this engine, if only other PendularRotationEngines and the NewtonIntegrator
+	// (which PendularIntegrator requires dead) stand between them: nothing between reads or changes a State.
+	if (!pendular::sameEngines(scannedEngines, scene->engines)) {
+		integrator.reset();
+		newtons.clear();
+		bool following = false;
+		for (const auto& e : scene->engines) {
+			if (following) {
+				if (dynamic_cast<PendularIntegrator*>(e.get())) {
+					integrator = e;
+					break;
+				}
+				if (e && e->getClassName() == "NewtonIntegrator") newtons.push_back(e);
+				else if (!dynamic_cast<PendularRotationEngine*>(e.get()))
+					break;
+			}
+			following = following || e.get() == this;
+		}
+	}
+	const long n       = long(scene->bodies->body.size());
+	bool       leaving = integrator && !integrator->dead && !scene->subStepping && invalidId(n) < 0;
+	for (const auto& e : newtons)
+		leaving = leaving && e->dead;
+	if (leaving) {
+		static_cast<PendularIntegrator*>(integrator.get())->takeTurn(scene, this);
+		++nDeferred;
+		return;
+	}
 	const long invalid = turn();
 	if (invalid >= 0)
 		PendularCheck::raiseInStep(scene, "PendularRotationEngine: ids[" + std::to_string(invalid) + "] = " + std::to_string(ids[invalid])
-		                                  + " is not a body id (0 to " + std::to_string(long(scene->bodies->body.size()) - 1) + ")");
+		                                  + " is not a body id (0 to " + std::to_string(n - 1) + ")");
 }
 
-bool PendularRotationEngine::turnAhead(Scene* current)
+PendularRotationEngine::Motion PendularRotationEngine::motion(Real dt) const
 {
-	scene = current;
-	if (turn() >= 0) return false; // the step's own call raises the error
-	turnedScene = scene;
-	turnedIter  = scene->iter;
-	++nAhead;
-	return true;
+	return Motion { rotationAxis * angularVelocity, Quaternionr(AngleAxisr(angularVelocity * dt, rotationAxis)), zeroPoint, rotateAroundZero };
+}
+
+long PendularRotationEngine::invalidId(long n) const
+{
+	for (long k = 0; k < long(ids.size()); ++k)
+		if (ids[k] < 0 || ids[k] >= n) return k;
+	return -1;
 }
 
 long PendularRotationEngine::turn()
 {
-	const auto& bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
-	const long  n      = long(bodies.size());
-	const long  m      = long(ids.size());
-	// RotationEngine's operations on every body (KinematicEngine::action's zeroing, then RotationEngine::apply),
-	// with the two values that are the same for every body made once.
-	const Vector3r    spin = rotationAxis * angularVelocity;
-	const Quaternionr q(AngleAxisr(angularVelocity * scene->dt, rotationAxis));
-	constexpr long    ahead = 8; // bodies ahead: the Body twice as far as its State, which is read from it
+	const auto&  bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
+	const long   n      = long(bodies.size());
+	const long   m      = long(ids.size());
+	const Motion step   = motion(scene->dt);
+	constexpr long ahead = 8; // bodies ahead: the Body twice as far as its State, which is read from it
 	// The body of ids[j] if j is an index of ids and ids[j] a body's id (nullptr otherwise: nothing to prefetch).
 	const auto bodyAt = [&](long j) -> const Body* { return j < m && ids[j] >= 0 && ids[j] < n ? bodies[ids[j]].get() : nullptr; };
 	for (long k = 0; k < m; ++k) {
@@ -57,14 +84,7 @@ long PendularRotationEngine::turn()
 		if (id < 0 || id >= n) return k;
 		const Body* b = bodies[id].get();
 		if (!b) continue;
-		State& s = *b->state;
-		s.vel = s.angVel = Vector3r::Zero();
-		s.angVel += spin;
-		if (rotateAroundZero) {
-			const Vector3r l      = s.pos - zeroPoint;
-			const Vector3r newPos = q * l + zeroPoint;
-			s.vel += Vector3r(newPos - s.pos) / scene->dt;
-		}
+		setVelocities(*b->state, step, scene->dt);
 	}
 	return -1;
 }

@@ -6,16 +6,19 @@
 #   so positions, velocities, angular velocities and orientations are bit-identical on one thread.
 #   On two threads (yade -j2) two runs differ by round-off even with the same engines (the collider's parallel
 #   insertion): bound 1e-9 of the scale as in test_loop.py.
-# - The same without the walls (erased before the run, no gravity): no entry of the PendularLoop's pass then
-#   goes through YADE's dispatchers, so on two threads the loop sets the engine's velocities ahead of its
-#   turn (nAhead counts those steps; none on one thread). The bounds are the same: the values must not
-#   change with who computes them.
+# - The same without the walls (erased before the run, no gravity). In scene.engines the PendularIntegrator
+#   follows the engine (with the dead NewtonIntegrator between them): it sets the velocities in its pass
+#   (nDeferred counts those steps: all of them, on one thread and on two). With a PyRunner between the
+#   engine and the integrator the engine sets them itself (nDeferred = 0). The bounds are the same: the
+#   values must not change with who computes them.
+# - Sub-steps (O.subStepping): Python may read the velocities between the engines, so the engine's sub-step
+#   sets them itself: the turned spheres spin at angularVelocity right after it.
 # - Bad input: an id that is not a body's raises ValueError naming the index and the id when the step runs;
 #   a zero or NaN axis raises ValueError naming the attribute when it is set.
 import math
 
 from yade import O
-from yade.wrapper import PendularRotationEngine, RotationEngine
+from yade.wrapper import PendularRotationEngine, PyRunner, RotationEngine
 
 from yade_capillary import scene, stress
 from yade_capillary.testing import Checker
@@ -35,7 +38,7 @@ def packing(walls, **kw):
             O.bodies.erase(b.id)
 
 
-def build(kind, around_zero, walls):
+def build(kind, around_zero, walls, runner=False):
     packing(walls)
     spheres = [b.id for b in O.bodies if b.shape.__class__.__name__ == "Sphere"]
     turned = spheres[:10]
@@ -44,7 +47,8 @@ def build(kind, around_zero, walls):
     O.bodies.erase(turned[4])
     engine = (PendularRotationEngine if kind == "ours" else RotationEngine)(ids=turned, rotationAxis=(0.3, -1.0, 2.0), angularVelocity=40.0,
                                                                             rotateAroundZero=around_zero, zeroPoint=(1e-3, 2e-3, 0))
-    O.engines = scene.engines(gravity=(0, 0, -9.81) if walls else (0, 0, 0), extra=[engine])
+    extra = [engine, PyRunner(iterPeriod=1, command="pass")] if runner else [engine]
+    O.engines = scene.engines(gravity=(0, 0, -9.81) if walls else (0, 0, 0), extra=extra)
     for e in O.engines:
         if parallel and hasattr(e, "parallelBodies"):
             e.parallelBodies = 0
@@ -52,7 +56,7 @@ def build(kind, around_zero, walls):
             e.sortDisorder = 0
     O.dt = scene.stable_dt(0.1)
     O.run(STEPS, True)
-    build.ahead = engine.nAhead if kind == "ours" else 0
+    build.ahead = engine.nDeferred if kind == "ours" else 0
     return [(tuple(b.state.pos), tuple(b.state.vel), tuple(b.state.angVel), tuple(b.state.ori)) for b in O.bodies if b is not None]
 
 
@@ -64,14 +68,13 @@ def worst(a, b):
     return max(max(abs(x - y) for x, y in zip(sa[k], sb[k])) / scales[k] for sa, sb in zip(a, b) for k in range(4))
 
 
-for around_zero, walls in ((True, True), (False, True), (True, False), (False, False)):
-    ref = build("yade", around_zero, walls)
-    got = build("ours", around_zero, walls)
-    tag = "rotateAroundZero %s, %s, %d thread(s)" % (around_zero, "walls" if walls else "no walls", O.numThreads)
-    if not walls:
-        ck.true(build.ahead > 0 if parallel else build.ahead == 0,
-                "%s: the PendularLoop set the velocities ahead in %d of %d steps (expected: some on two threads, none on one)"
-                % (tag, build.ahead, STEPS))
+for around_zero, walls, runner in ((True, True, False), (False, True, False), (True, False, False), (False, False, False), (True, True, True)):
+    ref = build("yade", around_zero, walls, runner)
+    got = build("ours", around_zero, walls, runner)
+    tag = "rotateAroundZero %s, %s%s, %d thread(s)" % (around_zero, "walls" if walls else "no walls", ", a PyRunner before the integrator" if runner else "",
+                                                       O.numThreads)
+    ck.true(build.ahead == (0 if runner else STEPS), "%s: the PendularIntegrator set the velocities in %d of %d steps (expected: %s)"
+            % (tag, build.ahead, STEPS, "none" if runner else "all"))
     if parallel:
         ck.true(worst(ref, got) <= BOUND, "%s: within %g of RotationEngine (worst %.3g of the scale)" % (tag, BOUND, worst(ref, got)))
     else:
@@ -85,8 +88,7 @@ stress.box_packing(50, "willett_full", rmin=RMIN, ratio=2.0, box="walls", porosi
 O.engines = scene.engines(extra=[PendularRotationEngine(ids=[3, 10 ** 6], angularVelocity=1.0)])
 O.dt = scene.stable_dt(0.1)
 ck.raises(ValueError, lambda: O.run(1, True), ["PendularRotationEngine", "ids[1] = 1000000", "not a body id"], "an id beyond the bodies")
-# The same error where the loop sets the velocities ahead (no walls; on two threads): it leaves the step to the
-# engine, which raises it.
+# The same error where the integrator had set the velocities: the engine keeps the step, and raises it.
 packing(False, gravity=(0, 0, 0))
 turner = PendularRotationEngine(ids=[3], angularVelocity=1.0)
 O.engines = scene.engines(extra=[turner])
@@ -95,13 +97,30 @@ for e in O.engines:
         e.parallelBodies = 0
 O.dt = scene.stable_dt(0.1)
 O.run(50, True)
-before = turner.nAhead
-ck.true(before > 0 if parallel else before == 0, "the loop set the velocities ahead in %d of the 50 steps before the error "
-        "(expected: some on two threads, none on one)" % before)
+before = turner.nDeferred
+ck.true(before == 50, "the integrator set the velocities in %d of the 50 steps before the error (expected: all)" % before)
 turner.ids = [3, 10 ** 6]
 ck.raises(ValueError, lambda: O.run(1, True), ["PendularRotationEngine", "ids[1] = 1000000", "not a body id"],
           "an id beyond the bodies, after %d steps set ahead" % before)
-ck.true(turner.nAhead == before, "the failed step was not counted as set ahead (%d, then %d)" % (before, turner.nAhead))
+ck.true(turner.nDeferred == before, "the failed step was not counted as left to the integrator (%d, then %d)" % (before, turner.nDeferred))
+# Sub-steps: after the engine's own sub-step, its spheres spin (they were at rest).
+packing(False, gravity=(0, 0, 0))
+turned = [b.id for b in O.bodies if b.shape.__class__.__name__ == "Sphere"][:3]
+turner = PendularRotationEngine(ids=turned, angularVelocity=5.0, rotationAxis=(0, 0, 1))
+O.engines = scene.engines(extra=[turner])
+O.dt = scene.stable_dt(0.1)
+for b in turned:
+    O.bodies[b].state.blockedDOFs = "xyzXYZ"
+    O.bodies[b].state.angVel = (0, 0, 0)
+O.subStepping = True
+O.step()  # the prologue
+while O.subStep <= [i for i, e in enumerate(O.engines) if e is turner][0]:
+    O.step()
+spins = [O.bodies[b].state.angVel[2] for b in turned]
+O.subStepping = False
+O.step()
+ck.true(turner.nDeferred == 0 and spins == [5.0] * 3, "sub-steps: the engine set the velocities itself (%d left to the integrator; spins %s rad/s after its sub-step)"
+        % (turner.nDeferred, spins))
 for axis in ((0, 0, 0), (math.nan, 1, 0)):
     ck.raises(ValueError, lambda: PendularRotationEngine(rotationAxis=axis), ["PendularRotationEngine.rotationAxis", "nonzero finite"],
               "rotationAxis = %s" % (axis,))
