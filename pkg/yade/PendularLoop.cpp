@@ -395,8 +395,10 @@ void PendularLoop::action()
 	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
 	        && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	const bool partsReady = partsValid && summed.forces;
-	// Static shares: each thread gets the same interactions in every run, so a run with a given number
-	// of threads is reproducible. The list is shared by the parts of the bodies (shareWork); a full pass
+	// Shares fixed between two full passes, so that each thread sums the forces on its bodies in the same
+	// order at every step of an epoch. The list is shared by the parts of the bodies (shareWork, which
+	// follows the threads' measured paces: two runs on several threads may differ by round-off, as YADE's
+	// collider already makes them on several threads by its parallel insertion); a full pass
 	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
 	// it (one half per thread left one thread idle a third of the time).
 	// A full pass lists the entries that the passes of this epoch may have to visit (see buildWork) as it
@@ -426,6 +428,7 @@ void PendularLoop::action()
 			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
 		}
 		if (fast) {
+			const auto started = Clock::now();
 			// Each thread its part of the list (workParts): the entries whose first body is in its part of
 			// the bodies, which it gathered and will move.
 			const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
@@ -443,6 +446,7 @@ void PendularLoop::action()
 			// Every thread of the team takes this branch or none (the same team size): once all have
 			// computed their entries, each adds what the others computed for the bodies of its part.
 			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
+			if (partsValid && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += ns(started, Clock::now());
 			if (partsReady && pendular::teamSize() == threads) {
 #ifdef YADE_OPENMP
 #pragma omp barrier
@@ -479,6 +483,7 @@ void PendularLoop::action()
 	// The skipped entries, counted as the full pass counts them (apart by the bound).
 	// The flush may read the arrays by parts and borders (see flushForces).
 	const bool parted = partsValid && teamComplete;
+	if (parted) ++paceSteps;
 	nSkipped = size - m;
 	fused += nSkipped;
 	apart += nSkipped;
@@ -646,8 +651,9 @@ void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
 // in the ci cell, whose ids grow with height). Without it, every step moved most bodies' lines from the
 // core that wrote them to the other one and back: on two threads each thread did its share of the pass
 // and of the gathering 20-50 % slower than one thread alone. The bodies are cut where the estimated cost
-// of the bodies and their entries is shared evenly; the list keeps the container's order within each
-// part, so that each thread sums the forces on a body in the same order at every step.
+// of the bodies and their entries is shared in inverse proportion to the threads' paces (threadPace); the
+// list keeps the container's order within each part, so that each thread sums the forces on a body in the
+// same order at every step of the epoch.
 void PendularLoop::shareWork(int threads)
 {
 	const long n = long(particles.size());
@@ -669,15 +675,45 @@ void PendularLoop::shareWork(int threads)
 		if (valid(slot.id1)) shareCost[size_t(slot.id1)] += c;
 		total += c;
 	}
+	// Each thread's pace, from the passes on the list since the last share (see threadPace), smoothed (half the
+	// last one's): its share of the estimated cost is inversely proportional to it. With the estimate alone,
+	// the second thread of the ci cell finished its entries 4-5 µs per step later than the first on average
+	// (its bodies all move and have more bridges than the first part's fixed floor; with the paces -0.3 to
+	// -0.9 µs), and in this machine's slow mode one core runs its part 10-15 % slower than the other for seconds.
+	if (long(threadPace.size()) != threads) threadPace.assign(size_t(threads), 1);
+	if (paceSteps >= minPaceSteps && long(partCost.size()) == threads && long(paceTime.size()) == threads) {
+		std::vector<double> perCost(static_cast<size_t>(threads));
+		double              mean     = 0;
+		bool                measured = true;
+		for (int k = 0; k < threads; ++k) {
+			measured = measured && partCost[size_t(k)] > 0 && paceTime[size_t(k)] > 0;
+			perCost[size_t(k)] = paceTime[size_t(k)] / double(partCost[size_t(k)]);
+			mean += perCost[size_t(k)] / threads;
+		}
+		for (int k = 0; measured && k < threads; ++k)
+			threadPace[size_t(k)] = math::min(maxPace, math::max(1 / maxPace, 0.5 * threadPace[size_t(k)] + 0.5 * Real(perCost[size_t(k)] / mean)));
+	}
+	paceTime.assign(size_t(threads), 0);
+	paceSteps = 0;
+	Real shares = 0;
+	for (const Real p : threadPace)
+		shares += 1 / p;
 	bodyParts.assign(size_t(threads) + 1, n);
 	bodyParts[0] = 0;
-	float sum    = 0;
-	int   t      = 1;
+	float sum   = 0;
+	Real  below = 1 / threadPace[0]; // the shares of the parts before bound t
+	int   t   = 1;
 	for (long id = 0; id < n && t < threads; ++id) {
 		sum += shareCost[size_t(id)];
-		while (t < threads && sum >= total * float(t) / float(threads))
-			bodyParts[size_t(t++)] = id + 1;
+		while (t < threads && sum >= float(total * below / shares)) {
+			bodyParts[size_t(t)] = id + 1;
+			below += 1 / threadPace[size_t(t++)];
+		}
 	}
+	partCost.assign(size_t(threads), 0);
+	for (int k = 0; k < threads; ++k)
+		for (long id = bodyParts[size_t(k)]; id < bodyParts[size_t(k) + 1]; ++id)
+			partCost[size_t(k)] += shareCost[size_t(id)];
 	// The part of each body, looked up once per entry and body below.
 	bodyPart.resize(size_t(n));
 	for (int k = 0; k < threads; ++k)
@@ -1124,6 +1160,9 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.shareCost);
 	visit(loop.bodyPart);
 	visit(loop.reachedBy);
+	visit(loop.threadPace);
+	visit(loop.partCost);
+	visit(loop.paceTime);
 	visit(loop.threadForce);
 	visit(loop.threadTorque);
 	visit(loop.directParts);

@@ -248,6 +248,14 @@ for box in ("walls", "facets"):
             # On two threads, a step on the list of entries shares it out by parts of the bodies and hands
             # the forces over from each thread's part and borders only (PendularLoop.shareWork): covered here.
             ck.true(loop.nFastPasses > 0, "%s, %d threads: %d steps on the list of entries" % (tag, threads, loop.nFastPasses))
+            # The parts follow the threads' measured paces (threadPace): none on one thread; on two, measured
+            # (not the starting 1) and within the bounds [1/4, 4] that keep every part some of the work.
+            pace = list(loop.threadPace)
+            if threads == 1 or O.numThreads < 2:
+                ck.true(pace == [], "%s, %d threads: no paces on one thread (%s)" % (tag, threads, pace))
+            else:
+                ck.true(len(pace) == 2 and all(0.25 <= p <= 4 for p in pace) and pace != [1.0, 1.0],
+                        "%s, %d threads: paces measured, within [1/4, 4] (%s)" % (tag, threads, pace))
             ck.true(diff <= BOUND, "%s, %d threads: scaled difference %.3g <= %g" % (tag, threads, diff, BOUND))
             ck.true(totals[0] == ref_totals[0], "%s, %d threads: nBridges %d == %d" % (tag, threads, totals[0], ref_totals[0]))
             for k, name in ((1, "liquidVolume"), (2, "liquidFormed"), (3, "liquidReleased")):
