@@ -57,6 +57,7 @@ void PendularForceResetter::action()
 	long                size   = 0;
 	pendular::SummedArrays summed;
 	const std::string   why = unsupported(l, n, size, summed);
+	if (loop && !(why.empty() && loopNext && !scene->subStepping)) static_cast<PendularLoop*>(loop.get())->cancelReset();
 	if (!why.empty()) {
 		++nHandedOver;
 		handedOverBecause = why;

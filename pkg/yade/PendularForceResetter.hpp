@@ -39,7 +39,7 @@ public:
 		"the :yref:`PendularLoop` in O.engines, each the bodies whose forces it handed over in that loop's last step. When only "
 		"InsertionSortColliders stand between this engine and the loop (as in yade_capillary.scene.engines), the loop zeroes them "
 		"in the parallel region of its gathering, before anything reads or adds a force (a parallel region of its own took "
-		"6-7 µs per step on two threads on the ci shear cell for 1 µs of zeroing; see nDeferred). "
+		"3-6 µs per step on two threads on the ci shear cell for 1 µs of zeroing; see nDeferred). "
 		"ForceResetter zeroes them in one thread: on two threads, the cache lines of the second thread's bodies then moved to "
 		"the first core and back at every step (measured on the validation shear cell: ForceResetter 31 µs per step on one "
 		"thread, 193 on two). The numbers are those of ForceResetter: the same entries are set to zero. Steps it cannot do "

@@ -188,8 +188,16 @@ void PendularIntegrator::action()
 	bool              fatal   = false;
 	const std::string why     = unsupported(p, threads, fatal);
 	if (fatal) PendularCheck::raiseInStep(scene, why);
-	// The velocities left to this step by the PendularRotationEngines before it (takeTurn).
-	const bool turning = turns.scene == scene && turns.iter == scene->iter && !turns.engines.empty();
+	// The velocities left to this step by the PendularRotationEngines before it (takeTurn), those still alive in
+	// O.engines (an engine removed or made dead after a failed step that had left them is not applied on its retry).
+	if (turns.scene != scene || turns.iter != scene->iter) turns.engines.clear();
+	turns.engines.erase(std::remove_if(turns.engines.begin(), turns.engines.end(),
+	                                   [this](const PendularRotationEngine* e) {
+		                                   return std::none_of(scene->engines.begin(), scene->engines.end(),
+		                                                       [e](const shared_ptr<Engine>& o) { return o.get() == e && !o->dead; });
+	                                   }),
+	                    turns.engines.end());
+	const bool turning = !turns.engines.empty();
 	if (!why.empty()) {
 		if (turning)
 			for (PendularRotationEngine* e : turns.engines)
@@ -224,10 +232,6 @@ void PendularIntegrator::action()
 	}
 }
 
-// NewtonIntegrator::action for a standalone body with spherical rotation in an aperiodic scene without
-// energy tracking, density scaling or mask, in its order of operations (the same numbers bit for bit:
-// tests/yade/test_integrator.py). Returns what NewtonIntegrator leaves in maxVelocitySq: the largest
-// over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
 const int* PendularIntegrator::turnerOf(long n)
 {
 	bool same = turnedBy == turns.engines && long(turnerIndex.size()) == n;
@@ -246,6 +250,10 @@ const int* PendularIntegrator::turnerOf(long n)
 	return turnerIndex.data();
 }
 
+// NewtonIntegrator::action for a standalone body with spherical rotation in an aperiodic scene without
+// energy tracking, density scaling or mask, in its order of operations (the same numbers bit for bit:
+// tests/yade/test_integrator.py). Returns what NewtonIntegrator leaves in maxVelocitySq: the largest
+// over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
 Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads, const int* turner,
                                    const PendularRotationEngine::Motion* motions)
 {

@@ -10,6 +10,7 @@
 #include <core/GlobalEngine.hpp>
 
 #include <boost/weak_ptr.hpp>
+#include <algorithm>
 #include <atomic>
 
 namespace yade {
@@ -26,7 +27,8 @@ public:
 	// pass sets them on each body just before it moves it (in the engines' order: the last one sets a body's).
 	void takeTurn(const Scene* s, PendularRotationEngine* e)
 	{
-		if (turns.scene != s || turns.iter != s->iter) {
+		// A step retried after an error (the same iteration) starts its list again.
+		if (turns.scene != s || turns.iter != s->iter || std::find(turns.engines.begin(), turns.engines.end(), e) != turns.engines.end()) {
 			turns.engines.clear();
 			turns.scene = s;
 			turns.iter  = s->iter;

@@ -446,7 +446,7 @@ void PendularLoop::action()
 			// Every thread of the team takes this branch or none (the same team size): once all have
 			// computed their entries, each adds what the others computed for the bodies of its part.
 			// A parallel region of its own cost more than the hand-over (2-3 µs per step on the ci cell).
-			if (partsValid && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += ns(started, Clock::now());
+			if (partsValid && pendular::teamSize() == threads && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += ns(started, Clock::now());
 			if (partsReady && pendular::teamSize() == threads) {
 #ifdef YADE_OPENMP
 #pragma omp barrier
@@ -661,6 +661,10 @@ void PendularLoop::shareWork(int threads)
 		bodyParts.clear();
 		workParts.clear();
 		borders.clear();
+		threadPace.clear();
+		partCost.clear();
+		paceTime.clear();
+		paceSteps = 0;
 		return;
 	}
 	// Estimated cost of a body and its entries, in steps of a record: a body's gathering, hand-over and

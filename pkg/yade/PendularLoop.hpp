@@ -115,6 +115,7 @@ public:
 	// The force container's reset of this step, to be done by the gathering (each thread zeroes its part of the
 	// bodies), from PendularForceResetter when only colliders run between them; size: the container's entries.
 	void takeReset(const Scene* s, long size) { pendingReset = PendingReset { s, s->iter, size }; }
+	void cancelReset() { pendingReset = PendingReset {}; } // a reset done by the resetter (one left by a failed step is dropped)
 	DECLARE_LOGGER;
 
 private:

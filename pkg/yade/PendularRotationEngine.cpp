@@ -3,7 +3,9 @@
 #include "Pendular.hpp"
 #include "PendularIntegrator.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace yade {
 
@@ -18,6 +20,16 @@ void PendularRotationEngine::postLoad(PendularRotationEngine&)
 		                            + std::to_string(double(rotationAxis[1])) + ", " + std::to_string(double(rotationAxis[2]))
 		                            + "): must be a nonzero finite vector (the direction of the axis)");
 	rotationAxis.normalize();
+	// setVelocities sets each listed body's velocities whole (RotationEngine zeroes every body, then adds per listed id).
+	std::vector<std::pair<Body::id_t, long>> sorted;
+	for (long k = 0; k < long(ids.size()); ++k)
+		sorted.emplace_back(ids[k], k);
+	std::sort(sorted.begin(), sorted.end());
+	for (size_t k = 1; k < sorted.size(); ++k)
+		if (sorted[k].first == sorted[k - 1].first)
+			throw std::invalid_argument("PendularRotationEngine.ids: id " + std::to_string(sorted[k].first) + " is listed twice (ids["
+			                            + std::to_string(sorted[k - 1].second) + "] and ids[" + std::to_string(sorted[k].second)
+			                            + "]); each body may be listed once");
 }
 
 void PendularRotationEngine::action()

@@ -56,12 +56,12 @@ public:
 		"the bodies' State objects (6-8 µs per step on the ci cell). Else it sets them in the calling thread. Not while "
 		"sub-stepping (O.subStepping: Python may read the velocities between the engines). An id that is not a body's raises "
 		"an error naming it; an erased body is skipped.",
-		((std::vector<Body::id_t>, ids, , , "Ids of the bodies turned [-]."))
+		((std::vector<Body::id_t>, ids, , Attr::triggerPostLoad, "Ids of the bodies turned [-]; an id listed twice raises ValueError (RotationEngine would add its spin twice to that body, after one zeroing)."))
 		((Real, angularVelocity, 0, , "Angular velocity [rad/s]."))
 		((Vector3r, rotationAxis, Vector3r::UnitX(), Attr::triggerPostLoad, "Axis of rotation (a direction, normalized when set; a zero or non-finite vector raises ValueError) [-]."))
 		((bool, rotateAroundZero, false, , "If True, the bodies also turn about the axis through zeroPoint (their velocity is set), else they only spin about their centres [-]."))
 		((Vector3r, zeroPoint, Vector3r::Zero(), , "A point of the rotation axis, with rotateAroundZero [m]."))
-		((long, nDeferred, 0, Attr::readonly, "Steps whose velocities the :yref:`PendularIntegrator` after this engine set in its pass over the bodies (this engine's step left them to it) [-].")),
+		((long, nDeferred, 0, Attr::readonly, "Steps whose velocities this engine left to the :yref:`PendularIntegrator` after it [-]: set in its pass over the bodies, or before the NewtonIntegrator's step when it hands the step to that engine.")),
 		/*ctor*/
 	);
 	// clang-format on

@@ -11,6 +11,11 @@
 #   (nDeferred counts those steps: all of them, on one thread and on two). With a PyRunner between the
 #   engine and the integrator the engine sets them itself (nDeferred = 0). The bounds are the same: the
 #   values must not change with who computes them.
+# - With energy tracking (O.trackEnergy) the integrator hands its step to the NewtonIntegrator and sets the
+#   velocities left to it first: bit-identical on one thread too, every step left to it.
+# - A step that fails after one engine left its velocities to the integrator (the next engine's bad id),
+#   retried after that first engine was made dead: its bodies are not turned (they were before the fix).
+# - An id listed twice raises ValueError naming it (RotationEngine would add the spin twice).
 # - Sub-steps (O.subStepping): Python may read the velocities between the engines, so the engine's sub-step
 #   sets them itself: the turned spheres spin at angularVelocity right after it.
 # - Bad input: an id that is not a body's raises ValueError naming the index and the id when the step runs;
@@ -38,8 +43,9 @@ def packing(walls, **kw):
             O.bodies.erase(b.id)
 
 
-def build(kind, around_zero, walls, runner=False):
+def build(kind, around_zero, walls, runner=False, energy=False):
     packing(walls)
+    O.trackEnergy = energy
     spheres = [b.id for b in O.bodies if b.shape.__class__.__name__ == "Sphere"]
     turned = spheres[:10]
     for i in turned:
@@ -68,11 +74,12 @@ def worst(a, b):
     return max(max(abs(x - y) for x, y in zip(sa[k], sb[k])) / scales[k] for sa, sb in zip(a, b) for k in range(4))
 
 
-for around_zero, walls, runner in ((True, True, False), (False, True, False), (True, False, False), (False, False, False), (True, True, True)):
-    ref = build("yade", around_zero, walls, runner)
-    got = build("ours", around_zero, walls, runner)
-    tag = "rotateAroundZero %s, %s%s, %d thread(s)" % (around_zero, "walls" if walls else "no walls", ", a PyRunner before the integrator" if runner else "",
-                                                       O.numThreads)
+for around_zero, walls, runner, energy in ((True, True, False, False), (False, True, False, False), (True, False, False, False),
+                                           (False, False, False, False), (True, True, True, False), (True, True, False, True)):
+    ref = build("yade", around_zero, walls, runner, energy)
+    got = build("ours", around_zero, walls, runner, energy)
+    tag = "rotateAroundZero %s, %s%s%s, %d thread(s)" % (around_zero, "walls" if walls else "no walls", ", a PyRunner before the integrator" if runner else "",
+                                                         ", energy tracked (the NewtonIntegrator's step)" if energy else "", O.numThreads)
     ck.true(build.ahead == (0 if runner else STEPS), "%s: the PendularIntegrator set the velocities in %d of %d steps (expected: %s)"
             % (tag, build.ahead, STEPS, "none" if runner else "all"))
     if parallel:
@@ -103,6 +110,26 @@ turner.ids = [3, 10 ** 6]
 ck.raises(ValueError, lambda: O.run(1, True), ["PendularRotationEngine", "ids[1] = 1000000", "not a body id"],
           "an id beyond the bodies, after %d steps set ahead" % before)
 ck.true(turner.nDeferred == before, "the failed step was not counted as left to the integrator (%d, then %d)" % (before, turner.nDeferred))
+O.trackEnergy = False
+# A failed step after a first engine left its velocities to the integrator, retried with that engine dead.
+packing(False, gravity=(0, 0, 0))
+first, second = [b.id for b in O.bodies if b.shape.__class__.__name__ == "Sphere"][:2]
+for b in (first, second):
+    O.bodies[b].state.blockedDOFs = "xyzXYZ"
+    O.bodies[b].state.angVel = (0, 0, 0)
+turner_a = PendularRotationEngine(ids=[first], angularVelocity=3.0, rotationAxis=(0, 0, 1))
+turner_b = PendularRotationEngine(ids=[second, 10 ** 6], angularVelocity=4.0, rotationAxis=(0, 0, 1))
+O.engines = scene.engines(extra=[turner_a, turner_b])
+O.dt = scene.stable_dt(0.1)
+ck.raises(ValueError, lambda: O.run(1, True), ["ids[1] = 1000000"], "the second engine's bad id, after the first left its velocities")
+turner_a.dead = True
+turner_b.ids = [second]
+O.run(1, True)
+ck.true(O.bodies[first].state.angVel.norm() == 0 and O.bodies[second].state.angVel[2] == 4.0,
+        "the retried step: the dead engine's sphere not turned (%s), the other one spins at 4 rad/s (%s)"
+        % (O.bodies[first].state.angVel, O.bodies[second].state.angVel))
+ck.raises(ValueError, lambda: PendularRotationEngine(ids=[1, 5, 1]), ["PendularRotationEngine.ids", "id 1 is listed twice", "ids[0] and ids[2]"],
+          "an id listed twice")
 # Sub-steps: after the engine's own sub-step, its spheres spin (they were at rest).
 packing(False, gravity=(0, 0, 0))
 turned = [b.id for b in O.bodies if b.shape.__class__.__name__ == "Sphere"][:3]
