@@ -57,7 +57,9 @@ void PendularForceResetter::action()
 	long                size   = 0;
 	pendular::SummedArrays summed;
 	const std::string   why = unsupported(l, n, size, summed);
-	if (loop && !(why.empty() && loopNext && !scene->subStepping)) static_cast<PendularLoop*>(loop.get())->cancelReset();
+	// Left to the loop's gathering unless sub-steps let Python read the forces between the engines.
+	const bool deferring = why.empty() && loopNext && !scene->subStepping;
+	if (loop && !deferring) static_cast<PendularLoop*>(loop.get())->cancelReset();
 	if (!why.empty()) {
 		++nHandedOver;
 		handedOverBecause = why;
@@ -69,9 +71,9 @@ void PendularForceResetter::action()
 	// permanent forces, and a step with those is handed over.
 	scene->forces.lastReset = scene->iter;
 	if (scene->trackEnergy) scene->energy->resetResettables();
-	if (loopNext && !scene->subStepping) { // sub-steps let Python read the forces between the engines
+	if (deferring) {
 		++nDeferred;
-		static_cast<PendularLoop*>(loop.get())->takeReset(scene, size);
+		static_cast<PendularLoop*>(loop.get())->takeReset(scene, summed, size);
 		return;
 	}
 	// Each thread of the loop's last hand-over zeroes the part of the bodies it wrote (PendularLoop::flushForces),

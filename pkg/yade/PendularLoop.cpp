@@ -210,13 +210,11 @@ void PendularLoop::gather(int threads)
 	epoch.resize(n);
 	// The force container's reset handed over by PendularForceResetter (takeReset): each thread zeroes the
 	// summed forces and torques of its part of the bodies below (the cache lines it writes in the pass and
-	// reads in PendularIntegrator), the entries of no body after it. ForceContainer::reset if the arrays
-	// are no longer at hand (the resetter found them so; only colliders ran since).
+	// reads in PendularIntegrator), the entries of no body after it.
 	const bool                   resetting = pendingReset.scene == scene && pendingReset.iter == scene->iter;
 	const long                   resetSize = pendingReset.size;
-	const pendular::SummedArrays reset     = resetting ? pendular::summedArrays(scene->forces, resetSize) : pendular::SummedArrays {};
+	const pendular::SummedArrays reset     = resetting ? pendingReset.summed : pendular::SummedArrays {};
 	pendingReset                           = PendingReset {};
-	if (resetting && !reset.forces) scene->forces.reset(scene->iter);
 	// Each thread its part of the bodies (bodyParts): the part whose interactions it computes in the pass.
 #ifdef YADE_OPENMP
 #pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) \
@@ -706,7 +704,7 @@ void PendularLoop::shareWork(int threads)
 	bodyParts[0] = 0;
 	float sum   = 0;
 	Real  below = 1 / threadPace[0]; // the shares of the parts before bound t
-	int   t   = 1;
+	int   t     = 1;
 	for (long id = 0; id < n && t < threads; ++id) {
 		sum += shareCost[size_t(id)];
 		while (t < threads && sum >= float(total * below / shares)) {

@@ -16,7 +16,6 @@
 
 namespace yade {
 
-
 class PendularLoop : public InteractionLoop {
 public:
 	// What the fused pass needs of one body, gathered once per step into a contiguous array
@@ -113,8 +112,9 @@ public:
 	int                      flushTeam() const { return known.flushTeam; }
 	const std::vector<long>& flushParts() const { return bodyParts; }
 	// The force container's reset of this step, to be done by the gathering (each thread zeroes its part of the
-	// bodies), from PendularForceResetter when only colliders run between them; size: the container's entries.
-	void takeReset(const Scene* s, long size) { pendingReset = PendingReset { s, s->iter, size }; }
+	// bodies), from PendularForceResetter when only colliders run between them (which leave the force container
+	// alone); summed: the container's summed arrays, size: their entries.
+	void takeReset(const Scene* s, const pendular::SummedArrays& summed, long size) { pendingReset = PendingReset { s, s->iter, summed, size }; }
 	void cancelReset() { pendingReset = PendingReset {}; } // a reset done by the resetter (one left by a failed step is dropped)
 	DECLARE_LOGGER;
 
@@ -318,8 +318,10 @@ private:
 	Known                              known;
 	// The reset that takeReset handed to this step's gathering (scene nullptr: none).
 	struct PendingReset {
-		const Scene* scene = nullptr;
-		long         iter = -1, size = 0;
+		const Scene*           scene = nullptr;
+		long                   iter  = -1;
+		pendular::SummedArrays summed;
+		long                   size = 0;
 	};
 	PendingReset pendingReset;
 	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have
