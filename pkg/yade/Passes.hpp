@@ -119,6 +119,16 @@ namespace pendular {
 		if (last > first) std::fill_n(v[first].data(), 3 * (last - first), Real(0));
 	}
 	// The threads of an engine's passes: its ompThreads if set (> 0), at most OpenMP's maximum.
+	// In a loop that waits for another thread's store: tells the core so (it then spins without flooding
+	// the pipeline and the other core's cache line with loads).
+	inline void spinPause()
+	{
+#if defined(__x86_64__) || defined(__i386__)
+		__builtin_ia32_pause();
+#elif defined(__aarch64__)
+		asm volatile("yield");
+#endif
+	}
 	inline int passThreads(int ompThreads)
 	{
 #ifdef YADE_OPENMP

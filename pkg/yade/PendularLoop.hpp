@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -268,16 +269,26 @@ private:
 	static bool listedOut(const Slot& slot, Real threshold) { return slot.potential() && Real(slot.gapBound) >= threshold; }
 	std::atomic<bool>                  workValid { false };
 	// The threads' parts of the bodies and of work (see shareWork; empty: even parts); borders[k][t]: the
-	// bodies of part t that the entries of part k reach (ascending).
-	std::vector<long>                                bodyParts, workParts;
+	// bodies of part t that the entries of part k reach (ascending). Part k of work lists first its entries
+	// that reach another part, up to workBorders[k], then those within the part.
+	std::vector<long>                                bodyParts, workParts, workBorders;
+	// Per thread of a pass on the list by parts, the last pass (handOffPass) whose entries that reach other
+	// parts it has computed: the owners of those bodies then hand them over (handOverBorders) while it
+	// computes the rest of its part. One cache line each: the others spin on it.
+	struct alignas(64) HandOff {
+		std::atomic<long> pass { 0 };
+	};
+	std::unique_ptr<HandOff[]> handOffs;
+	long                       handOffCount = 0, handOffPass = 0;
 	std::vector<std::vector<std::vector<Body::id_t>>> borders;
 	// What shareWork computes them from, kept between its calls: each body's estimated cost and part, and
 	// the parts whose entries reach it from another part (a bit per part).
 	std::vector<float>                               shareCost;
 	std::vector<int>                                 bodyPart;
 	std::vector<uint64_t>                            reachedBy;
-	// Each thread's pace (threadPace) is measured in the passes on the list since the last shareWork: its own
-	// entries' wall time (paceTime, over paceSteps passes) per unit of the estimated cost of its part (partCost).
+	// Each thread's pace (threadPace) is measured in the passes on the list since the last shareWork: the wall
+	// time of its own entries and hand-over, without its waits (paceTime, over paceSteps passes), per unit of the
+	// estimated cost of its part (partCost).
 	std::vector<float>     partCost;
 	std::vector<double>    paceTime;
 	long                   paceSteps    = 0;
@@ -378,7 +389,7 @@ public:
 		((bool, skipFar, true, , "Between two runs of the collider, visit only the entries of the interaction container that a step may have to compute: the potential pairs whose bound on the gap (see nBounded) exceeds what the bodies can move before the bound is renewed are left out of a list of entries made after each full pass, so that the pass no longer reads their container entries and slots at every step. Same results bit for bit on one thread (the entries are visited in the container's order; on several threads the entries are shared out differently, so the force sums differ by round-off; nFused, nApart and nBounded count the skipped ones as before); only with records (keepRecords), and the list is dropped by anything that may change the container (the collider, sorting, the wrapped Python paths). False: every entry at every step."))
 		((long, nSkipped, 0, Attr::readonly, "Of nBounded, the entries of the interaction container not visited at all in the last step [-] (see skipFar)."))
 		((long, nFastPasses, 0, Attr::readonly, "Steps in which the pass visited only its list of entries [-] (see skipFar)."))
-		((std::vector<Real>, threadPace, , Attr::readonly | Attr::noSave, "On several threads, each thread's pace in the passes on the list, relative to the others' (about 1 on average) [-]: the wall time of its own entries per unit of their estimated cost, measured between two shares of the work and smoothed (half the last value); each thread gets a share of the estimated cost inversely proportional to it (between 1/4 and 4), so that the threads finish their entries together where the estimate or a core's speed is off. Empty on one thread."))
+		((std::vector<Real>, threadPace, , Attr::readonly | Attr::noSave, "On several threads, each thread's pace in the passes on the list, relative to the others' (about 1 on average) [-]: the wall time of its own entries and of its hand-over of the others' forces on its bodies (not its waits) per unit of the entries' estimated cost, measured between two shares of the work and smoothed (half the last value); each thread gets a share of the estimated cost inversely proportional to it (between 1/4 and 4), so that the threads finish their entries together where the estimate or a core's speed is off. Empty on one thread."))
 		((bool, keepRecords, true, , "Keep the state of sphere-sphere interactions without film or viscosity in the loop's own contiguous array between steps; their interactions hold two placeholders shared by all instead of their own ScGeom and PendularPhys, which are made from the record when read (from Python, by O.save, by YADE's utils functions) and dropped after the next step unless Python still holds them (176 B per recorded bridge instead of 816); only once yade_capillary.objects.guard has wrapped those paths (importing yade_capillary.scene does), with engines known not to read the interactions during the run (ForceResetter, InsertionSortCollider, PendularCheck, NewtonIntegrator, PendularIntegrator, PyRunner, RotationEngine), without interaction callbacks, periodic cell or MPI. False: the objects are read and written at every step."))
 		((long, parallelBodies, 1000, , "From this many bodies on, the per-body phases (gathering the bodies, zeroing the force arrays, handing the forces over) run on ompThreads threads, below it on one [-]: a parallel region costs more than a short pass (./run.sh bench compares 1000, the default, with 20000, the earlier one, on the ci cell: on two threads its 2 200 bodies gain 8-11 %)."))
 		((Real, gatherTime, 0, , "Wall time spent gathering the bodies' positions and velocities since this was last set to 0 [ns]."))
