@@ -11,8 +11,10 @@
 #include <boost/weak_ptr.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <limits>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -118,17 +120,25 @@ namespace pendular {
 	{
 		if (last > first) std::fill_n(v[first].data(), 3 * (last - first), Real(0));
 	}
-	// The threads of an engine's passes: its ompThreads if set (> 0), at most OpenMP's maximum.
-	// In a loop that waits for another thread's store: tells the core so (it then spins without flooding
-	// the pipeline and the other core's cache line with loads).
-	inline void spinPause()
+	// Waits until `flag` holds `value` (stored with release by another thread): spins with the core told
+	// so (no flood of loads on the other core's cache line), then yields the core after spinLimit rounds,
+	// so that a thread descheduled by the system (processes sharing the cores, OMP_WAIT_POLICY=passive)
+	// gets it back instead of waiting out the spinning thread's time slice.
+	inline void waitFor(const std::atomic<long>& flag, long value)
 	{
+		constexpr int spinLimit = 4096; // about 0.1-0.2 ms of pauses, longer than a step's waits on free cores (under 0.1 ms)
+		for (int spins = 0; flag.load(std::memory_order_acquire) != value; ++spins) {
+			if (spins < spinLimit) {
 #if defined(__x86_64__) || defined(__i386__)
-		__builtin_ia32_pause();
+				__builtin_ia32_pause();
 #elif defined(__aarch64__)
-		asm volatile("yield");
+				asm volatile("yield");
 #endif
+			} else
+				std::this_thread::yield();
+		}
 	}
+	// The threads of an engine's passes: its ompThreads if set (> 0), at most OpenMP's maximum.
 	inline int passThreads(int ompThreads)
 	{
 #ifdef YADE_OPENMP

@@ -375,8 +375,9 @@ void PendularLoop::action()
 	// Between two runs of the collider and within one epoch of the bound on potential pairs' gaps
 	// (see gather), the container is the one of the last pass, and a potential pair whose bound exceeds
 	// what the bodies can move in the whole epoch is skipped at every step: the pass visits only the
-	// entries of `work` (built after the last full pass), in the container's order, so that the forces
-	// are summed in the same order and the skipped entries are counted as the full pass counts them.
+	// entries of `work` (built after the last full pass), in the same order at every step (the container's
+	// order on one thread, see shareWork on several), so that the forces are summed in the same order, and
+	// the skipped entries are counted as the full pass counts them.
 	// Anything else that changes the container drops the list: the Python paths through syncScene,
 	// sorting, another scene. Behind that, the first and last entries must be the interactions of the
 	// last pass (an erasure moves the last entry into its hole, an insertion appends: erasing and
@@ -390,7 +391,9 @@ void PendularLoop::action()
 	// them for this list and these bodies; the pass does not change them). Then a pass on the list whose
 	// threads add their own bodies' forces into the container hands the borders over in its own parallel
 	// region (partsReady, see handOverBorders), if the whole team runs it.
-	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.back() == m && long(borders.size()) == threads
+	// (workParts as partOf takes it: a thread that waits for another's hand-off relies on that thread's part
+	// holding its workBorders.)
+	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.front() == 0 && workParts.back() == m && long(borders.size()) == threads
 	        && long(workBorders.size()) == threads && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	const bool partsReady = partsValid && summed.forces;
 	if (partsReady && handOffCount != threads) {
@@ -461,8 +464,7 @@ void PendularLoop::action()
 			if (handing) {
 				for (int k = 0; k < threads; ++k)
 					if (k != c.thread && !borders[size_t(k)][size_t(c.thread)].empty())
-						while (handOffs[k].pass.load(std::memory_order_acquire) != handOffAt)
-							pendular::spinPause();
+						pendular::waitFor(handOffs[k].pass, handOffAt);
 				const auto handing0 = Clock::now();
 				handOverBorders(c.thread, summed);
 				busy += Clock::now() - handing0;
@@ -667,9 +669,10 @@ void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
 // in the ci cell, whose ids grow with height). Without it, every step moved most bodies' lines from the
 // core that wrote them to the other one and back: on two threads each thread did its share of the pass
 // and of the gathering 20-50 % slower than one thread alone. The bodies are cut where the estimated cost
-// of the bodies and their entries is shared in inverse proportion to the threads' paces (threadPace); the
-// list keeps the container's order within each part, so that each thread sums the forces on a body in the
-// same order at every step of the epoch.
+// of the bodies and their entries is shared in inverse proportion to the threads' paces (threadPace). Each
+// part of the list holds first the entries that reach another part, then the others, each group in the
+// container's order: the same order at every step of the epoch, so that each thread sums the forces on a
+// body in the same order (on one thread, the container's order: InteractionLoop's sums).
 void PendularLoop::shareWork(int threads)
 {
 	const long n = long(particles.size());
@@ -1186,6 +1189,7 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.work);
 	visit(loop.bodyParts);
 	visit(loop.workParts);
+	visit(loop.workBorders);
 	visit(loop.borders);
 	visit(loop.listed);
 	visit(loop.chunkEnds);
