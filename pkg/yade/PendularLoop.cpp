@@ -396,10 +396,7 @@ void PendularLoop::action()
 	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.front() == 0 && workParts.back() == m && long(borders.size()) == threads
 	        && long(workBorders.size()) == threads && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
 	const bool partsReady = partsValid && summed.forces;
-	if (partsReady && handOffCount != threads) {
-		handOffs.reset(new HandOff[size_t(threads)]);
-		handOffCount = threads;
-	}
+	if (partsReady && long(handOffs.size()) != threads) handOffs = std::vector<HandOff>(size_t(threads));
 	const long handOffAt = partsReady ? ++handOffPass : 0;
 	// Shares fixed between two full passes, so that each thread sums the forces on its bodies in the same
 	// order at every step of an epoch. The list is shared by the parts of the bodies (shareWork, which
@@ -1190,6 +1187,7 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.bodyParts);
 	visit(loop.workParts);
 	visit(loop.workBorders);
+	visit(loop.handOffs);
 	visit(loop.borders);
 	visit(loop.listed);
 	visit(loop.chunkEnds);

@@ -10,7 +10,6 @@
 #include <atomic>
 #include <cstdint>
 #include <limits>
-#include <memory>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -278,8 +277,8 @@ private:
 	struct alignas(64) HandOff {
 		std::atomic<long> pass { 0 };
 	};
-	std::unique_ptr<HandOff[]> handOffs;
-	long                       handOffCount = 0, handOffPass = 0;
+	std::vector<HandOff> handOffs; // made whole for a team (HandOff is not movable), never resized
+	long                 handOffPass = 0;
 	std::vector<std::vector<std::vector<Body::id_t>>> borders;
 	// What shareWork computes them from, kept between its calls: each body's estimated cost and part, and
 	// the parts whose entries reach it from another part (a bit per part).
