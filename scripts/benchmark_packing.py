@@ -45,5 +45,5 @@ print("  ours, PendularLoop at the end of its run: %d real interactions, %d reco
       (real, recorded, mem["slot"], mem["record"], fused["with_objects"], mem["ScGeom"], mem["PendularPhys"], fused["invariants"], mem["invariants"],
        ours, ours / theirs))
 print("  ours, a bridge with objects (not recorded, or read by Python): %d B, ratio %.2f" % (mem["slot"] + objects, (mem["slot"] + objects) / theirs))
-print("  PendularLoop per body: gathered data (two steps) %d + %d B, forces %d B per thread" % (mem["particle"], mem["near"], mem["forces"]))
+print("  PendularLoop per body: gathered data (two steps) %d + %d B, forces %d B per thread" % (mem["particle"], mem["epoch"], mem["forces"]))
 sys.exit(0)

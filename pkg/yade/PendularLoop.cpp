@@ -167,8 +167,7 @@ void PendularLoop::gather(int threads)
 	const size_t n      = bodies.size();
 	particles.swap(previous); // the last pass's particles stay readable for the records' shearInc (shearIncrement)
 	// New entries defined: the sweep compares before it writes.
-	particles.resize(n, Particle { Vector3r::Zero(), Vector3r::Zero(), Vector3r::Zero(), 0, 0, 0, missing });
-	near.resize(n, Near { Vector3r::Zero(), 0 });
+	particles.resize(n, Particle { Vector3r::Zero(), Vector3r::Zero(), 0, 0, missing, Vector3r::Zero(), 0 });
 	for (auto& f : threadForce)
 		f.resize(n, Vector3r::Zero());
 	for (auto& t : threadTorque)
@@ -197,12 +196,17 @@ void PendularLoop::gather(int threads)
 	// body's radius, film reach, material kind or subdomain changed (Near.radius encodes them), so
 	// that the bound holds for the radii it was computed with. Films that reach beyond the surface
 	// (formation='films') change every step: no bound then. Checked in the same pass as the gathering.
-	int  restart = epoch.size() != n, films = 0;
+	// The bodies of an epoch are those of the pass that started it (epochPending): taken here, by each thread
+	// for its part, from that pass's particles (previous), instead of copied by one thread after it.
 	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
 	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
 	// (A reduction's private copies start at its identity, not at this value: every iteration computes its part.)
 	int        kindsChanged = 0;
 	const bool comparable   = previous.size() == n;
+	const bool takeEpoch    = known.epochPending && comparable;
+	int        restart = known.epochPending ? !comparable : epoch.size() != n, films = 0;
+	// The bodies that other threads' entries reach (sharedBodies, made by shareWork for these parts): see streamStore.
+	const bool streaming = sharedBodies.size() == n;
 	const Material*           lastMaterial = nullptr;
 	bool                      lastPendular = false;
 	shared_ptr<Material>      heldMaterial;
@@ -222,6 +226,7 @@ void PendularLoop::gather(int threads)
 #endif
 	{
 	const auto part = pendular::partOf(bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
+	bool       streamed = false;
 	if (reset.forces) {
 		pendular::zeroEntries(reset.forces, part.first, part.second);
 		pendular::zeroEntries(reset.torques, part.first, part.second);
@@ -236,12 +241,17 @@ void PendularLoop::gather(int threads)
 			__builtin_prefetch(ahead.shape.get());
 			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
 		}
+		// The last pass's particle: a streamed one is in memory only.
+		if (comparable && id + prefetchAhead < n) {
+			if (takeEpoch) prefetchObject(&previous[id + prefetchAhead]);
+			else __builtin_prefetch(&previous[id + prefetchAhead]);
+		}
 		// Made in registers, stored once and only if changed (below).
-		Particle    p;
+		Particle    p {}; // every byte defined: streamStore copies whole lines
 		const auto& b = bodies[id];
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
 		pendular::readBody(b.get(), scene->subdomain, states[id], bounds[id], clumps, aspherical, subdomains);
-		if (!b) p = Particle { Vector3r::Zero(), Vector3r::Zero(), Vector3r::Zero(), 0, 0, 0, missing };
+		if (!b) p = Particle { Vector3r::Zero(), Vector3r::Zero(), 0, 0, missing, Vector3r::Zero(), 0 };
 		else {
 			const State& s = *b->state;
 			p.pos          = s.pos;
@@ -272,20 +282,24 @@ void PendularLoop::gather(int threads)
 					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
 			}
 		}
-		storeChanged(particles[id], p);
+		if (streaming && sharedBodies[id]) {
+			pendular::streamStore(particles[id], p);
+			streamed = true;
+		} else
+			storeChanged(particles[id], p);
 		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != previous[id].kind || p.subdomain != previous[id].subdomain));
+		if (takeEpoch) epoch[id] = nearOf(previous[id], scene->subdomain, true);
 		if (p.kind != pendularSphere) {
-			storeChanged(near[id], Near { Vector3r::Zero(), 0 });
-			restart  = math::max(restart, int(epoch[id].radius != 0));
+			restart = math::max(restart, int(epoch[id].radius != 0));
 			continue;
 		}
-		const Near q { p.pos, p.subdomain == scene->subdomain ? p.radius + p.reach : -(p.radius + p.reach) };
-		storeChanged(near[id], q);
+		const Near q = nearOf(p, scene->subdomain, true);
 		films    = math::max(films, int(p.reach != 0));
 		rmin     = math::min(rmin, p.radius);
 		restart  = math::max(restart, int(epoch[id].radius != q.radius));
 		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
 	}
+	if (streamed) pendular::streamFence(); // before the region's barrier, after which other threads read them
 	}
 	if (reset.forces) {
 		pendular::zeroEntries(reset.forces, long(n), resetSize);
@@ -299,8 +313,9 @@ void PendularLoop::gather(int threads)
 	const Real move         = math::sqrt(move2);
 	known.fullCheck         = restart || films || !(move < epochMove * rmin);
 	known.bodiesKept        = !kindsChanged;
+	known.films             = films;
+	known.epochPending      = known.fullCheck;
 	if (known.fullCheck) {
-		epoch                   = near;
 		known.epochDisplacement = 0;
 		known.epochRmin         = rmin;
 		++known.epochCount;
@@ -557,9 +572,9 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
 			if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
 		} else if (skipApart && !apartByBound(ahead)) { // a potential pair to check: its bodies
-			if (size_t(math::max(ahead.id1, ahead.id2)) < near.size()) {
-				__builtin_prefetch(&near[ahead.id1]);
-				__builtin_prefetch(&near[ahead.id2]);
+			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
+				__builtin_prefetch(&particles[ahead.id1]);
+				__builtin_prefetch(&particles[ahead.id2]);
 			}
 		}
 	}
@@ -600,8 +615,8 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 				return;
 			}
 			// Else one distance check on the gathered data, without reading the Interaction.
-			const Near& q1 = near[slot.id1];
-			const Near& q2 = near[slot.id2];
+			const Near q1 = nearOf(particles[slot.id1], scene->subdomain, known.films);
+			const Near q2 = nearOf(particles[slot.id2], scene->subdomain, known.films);
 			if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
 				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
 				const Real d2   = (q2.pos - q1.pos).squaredNorm();
@@ -678,6 +693,7 @@ void PendularLoop::shareWork(int threads)
 		workParts.clear();
 		workBorders.clear();
 		borders.clear();
+		sharedBodies.clear();
 		threadPace.clear();
 		partCost.clear();
 		paceTime.clear();
@@ -776,10 +792,13 @@ void PendularLoop::shareWork(int threads)
 		for (auto& ids : byPart)
 			ids.clear();
 	}
+	sharedBodies.assign(size_t(n), 0);
 	for (long id = 0; id < n; ++id)
 		for (size_t w = 0; w < words; ++w)
-			for (uint64_t mask = reachedBy[size_t(id) * words + w]; mask != 0; mask &= mask - 1)
+			for (uint64_t mask = reachedBy[size_t(id) * words + w]; mask != 0; mask &= mask - 1) {
 				borders[w * 64 + size_t(__builtin_ctzll(mask))][size_t(bodyPart[size_t(id)])].push_back(Body::id_t(id));
+				sharedBodies[size_t(id)] = 1;
+			}
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the
@@ -1181,8 +1200,8 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.slots);
 	visit(loop.particles);
 	visit(loop.previous);
-	visit(loop.near);
 	visit(loop.epoch);
+	visit(loop.sharedBodies);
 	visit(loop.work);
 	visit(loop.bodyParts);
 	visit(loop.workParts);
@@ -1298,7 +1317,7 @@ boost::python::dict PendularLoop::memory() const
 	d["PendularPhys"]  = sizeof(PendularPhys);
 	d["ViscElCapPhys"] = sizeof(ViscElCapPhys);
 	d["particle"]      = 2 * sizeof(Particle); // this step's and the last one's (see previous)
-	d["near"]          = sizeof(Near);
+	d["epoch"]         = sizeof(Near);
 	d["slot"]          = sizeof(Slot);
 	d["record"]        = sizeof(Record) + sizeof(shared_ptr<Interaction>); // with its entry of recordInteractions
 	d["invariants"]    = sizeof(Invariants) + sizeof(PendularPhys); // once per distinct set of bridge and contact parameters, with its prototype

@@ -19,17 +19,21 @@ namespace yade {
 class PendularLoop : public InteractionLoop {
 public:
 	// What the fused pass needs of one body, gathered once per step into a contiguous array
-	// (instead of two shared_ptr hops to a State per interaction).
-	struct Particle {
-		Vector3r pos, vel, angVel;
+	// (instead of two shared_ptr hops to a State per interaction). Two whole cache lines: what every
+	// bridge-step and every check of a potential pair reads (position, velocity, radius, subdomain,
+	// kind) in the first, what only friction and films read in the second; whole lines, so that the
+	// bodies that other threads read can be written with streaming stores (see gather).
+	struct alignas(64) Particle {
+		Vector3r pos, vel;
 		Real     radius;
-		Real     reach; // film thickness of a sphere whose bridges form when the films touch (formation='films'), else 0
 		int      subdomain;
 		uint8_t  kind;
+		Vector3r angVel;
+		Real     reach; // film thickness of a sphere whose bridges form when the films touch (formation='films'), else 0
 		bool     operator==(const Particle& o) const
 		{
-			return pos == o.pos && vel == o.vel && angVel == o.angVel && radius == o.radius && reach == o.reach && subdomain == o.subdomain
-			        && kind == o.kind;
+			return pos == o.pos && vel == o.vel && radius == o.radius && subdomain == o.subdomain && kind == o.kind && angVel == o.angVel
+			        && reach == o.reach;
 		}
 	};
 	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
@@ -240,17 +244,24 @@ private:
 	// seenRatcheting, what the shearInc of a record in contact follows from (shearIncrement).
 	std::vector<Particle>              previous;
 	pendular::BodyPointers             bodyPointers;
-	// The part of a Particle that the check of a potential pair reads, 32 B (two per cache line):
-	// the centre and the radius plus the reach, signed: > 0 a PendularMat sphere of this subdomain,
-	// < 0 (negated) one of another subdomain, 0 any other body.
+	// A body as the check of a potential pair sees it: the centre and the radius plus the reach, signed:
+	// > 0 a PendularMat sphere of this subdomain, < 0 (negated) one of another subdomain, 0 any other body.
+	// films: some sphere has a reach (else it is 0 and not read: it is on the particle's second line).
 	struct Near {
 		Vector3r pos;
 		Real     radius;
-		bool     operator==(const Near& o) const { return radius == o.radius && pos == o.pos; }
 	};
-	std::vector<Near>                  near;
-	// near at the start of the epoch of the bound on potential pairs' gaps (see gather).
+	static Near nearOf(const Particle& p, int subdomain, bool films)
+	{
+		if (p.kind != pendularSphere) return Near { Vector3r::Zero(), 0 };
+		const Real r = films ? p.radius + p.reach : p.radius;
+		return Near { p.pos, p.subdomain == subdomain ? r : -r };
+	}
+	// The bodies as of the start of the epoch of the bound on potential pairs' gaps (see gather).
 	std::vector<Near>                  epoch;
+	// Per body: reached by the entries of another thread's part of the list (see shareWork), so gathered
+	// with streaming stores (see gather); empty: none.
+	std::vector<uint8_t>               sharedBodies;
 	// The container entries a pass of this epoch may have to visit (see buildWork; valid: Known says
 	// what for). Atomic: the wrapped Python paths drop it from other threads.
 	std::vector<long>                  work;
@@ -302,6 +313,9 @@ private:
 		Real epochDisplacement = 0, epochRmin = 0;
 		long epochCount        = 0;
 		bool fullCheck         = true;
+		// epochPending: the last pass started an epoch, whose bodies the next gathering takes from the particles
+		// of that pass (previous); films: some sphere gathered by the last gathering has a film's reach.
+		bool epochPending = false, films = false;
 		// No body's kind or subdomain changed since the last pass (the records' bodies then need no check).
 		bool bodiesKept = false;
 		// What work was built for: the epoch, the collider's runs, the container and its size.
@@ -405,7 +419,7 @@ public:
 		.staticmethod("objectsOf")
 		.def("readersGuarded", &PendularLoop::guardReaders, "Declare that the Python paths that read or change interactions call sync (yade_capillary.objects.guard does it); before, no records are kept.")
 		.staticmethod("readersGuarded")
-		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; a recorded interaction has no ScGeom and PendularPhys of its own unless they are read; invariants: once per distinct set of bridge and contact parameters, with its prototype physics, PendularPhys) and of its per-body arrays (particle: gathered body data of this step and the last; near: centre and radius for the check of potential pairs; forces: force and torque per thread).")
+		.def("memory", &PendularLoop::memory, "sizeof in bytes of the objects of one interaction (Interaction, ScGeom, PendularPhys, YADE's ViscElCapPhys for comparison), of the fused pass's slot per interaction (slot), of a record (record: its entry in the record array and its pointer to the interaction; a recorded interaction has no ScGeom and PendularPhys of its own unless they are read; invariants: once per distinct set of bridge and contact parameters, with its prototype physics, PendularPhys) and of its per-body arrays (particle: gathered body data of this step and the last; epoch: centre and radius at the start of the epoch of the bound on potential pairs' gaps; forces: force and torque per thread).")
 	);
 	// clang-format on
 };
