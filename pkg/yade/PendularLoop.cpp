@@ -41,14 +41,6 @@ namespace {
 	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
 	constexpr long passChunk = 256;
 
-	// What the gathering writes of a body, written only if changed: a line that the other threads read in
-	// a pass is written only after the other cores' copies are invalidated, which took most of the
-	// gathering on two threads; the bodies that do not move (walls, fixed spheres) then cost a read.
-	template <class T> void storeChanged(T& stored, const T& value)
-	{
-		if (!(stored == value)) stored = value;
-	}
-
 	// Sorts (key, entry) pairs by key, key = id1 << 32 | id2 (see Slot::key), id1 below `bound` (the
 	// number of bodies): a counting pass by id1, then by id2 within each id1 (a few entries each).
 	// std::sort took about 0.7 ms of the ci cell's 1.4 ms sort of 13 600 entries, at nearly every run of
@@ -246,7 +238,7 @@ void PendularLoop::gather(int threads)
 			if (takeEpoch) prefetchObject(&previous[id + prefetchAhead]);
 			else __builtin_prefetch(&previous[id + prefetchAhead]);
 		}
-		// Made in registers, stored once and only if changed (below).
+		// Made in registers, stored once (below).
 		Particle    p {}; // every byte defined: streamStore copies whole lines
 		const auto& b = bodies[id];
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
@@ -286,7 +278,7 @@ void PendularLoop::gather(int threads)
 			pendular::streamStore(particles[id], p);
 			streamed = true;
 		} else
-			storeChanged(particles[id], p);
+			particles[id].update(p);
 		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != previous[id].kind || p.subdomain != previous[id].subdomain));
 		if (takeEpoch) epoch[id] = nearOf(previous[id], scene->subdomain, true);
 		if (p.kind != pendularSphere) {

@@ -30,10 +30,22 @@ public:
 		uint8_t  kind;
 		Vector3r angVel;
 		Real     reach; // film thickness of a sphere whose bridges form when the films touch (formation='films'), else 0
-		bool     operator==(const Particle& o) const
+		// Takes p's values, writing each line only if it changes: a body that does not move costs a read, and
+		// the second line of a sphere that does not spin (frictionless) is not written. (A line that another
+		// thread read in the last pass is written only after that core's copy is invalidated.)
+		void update(const Particle& p)
 		{
-			return pos == o.pos && vel == o.vel && radius == o.radius && subdomain == o.subdomain && kind == o.kind && angVel == o.angVel
-			        && reach == o.reach;
+			if (!(pos == p.pos && vel == p.vel && radius == p.radius && subdomain == p.subdomain && kind == p.kind)) {
+				pos       = p.pos;
+				vel       = p.vel;
+				radius    = p.radius;
+				subdomain = p.subdomain;
+				kind      = p.kind;
+			}
+			if (!(angVel == p.angVel && reach == p.reach)) {
+				angVel = p.angVel;
+				reach  = p.reach;
+			}
 		}
 	};
 	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
