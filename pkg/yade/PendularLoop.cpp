@@ -234,7 +234,7 @@ void PendularLoop::gather(int threads)
 			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
 		}
 		// The last pass's particle: a streamed one is in memory only.
-		if (comparable && id + prefetchAhead < n) {
+		if (streaming && comparable && id + prefetchAhead < n) {
 			if (takeEpoch) prefetchObject(&previous[id + prefetchAhead]);
 			else __builtin_prefetch(&previous[id + prefetchAhead]);
 		}
