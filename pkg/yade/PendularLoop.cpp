@@ -239,7 +239,9 @@ void PendularLoop::gather(int threads)
 			else __builtin_prefetch(&previous[id + prefetchAhead]);
 		}
 		// Made in registers, stored once (below).
-		Particle    p {}; // every byte defined: streamStore copies whole lines
+		// Value-initialized: streamStore copies whole lines, padding included (never read), which GCC would
+		// otherwise warn may be uninitialized.
+		Particle    p {};
 		const auto& b = bodies[id];
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
 		pendular::readBody(b.get(), scene->subdomain, states[id], bounds[id], clumps, aspherical, subdomains);
