@@ -9,7 +9,9 @@
 #   cache: file of the prepared cell, made if missing.
 # Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
 # this VM has a mode in which two threads gain nothing (round trip 300-420 ns instead of 55-110), and
-# a ratio of thread counts holds only between runs of the same mode.
+# a ratio of thread counts holds only between runs of the same mode; and with the machine's parallel
+# speed just before it (core_latency --parallel: 1 when two threads get two cores' worth of private
+# work, 0.5 when each runs at half speed, which this VM also does at times, at any round trip).
 import sys
 
 from yade import O
@@ -26,7 +28,7 @@ print("(b) shear cell %s, wet13.6nl, %d steps, particle-steps/s (ratio to the bu
 for t in threads:
     base = results[t][0]["particle_steps_per_s"]
     for name, r in zip(NAMES, results[t]):
-        trip = "" if r["round_trip_ns"] is None else "  core round trip %.0f ns" % r["round_trip_ns"]
+        trip = "" if r["round_trip_ns"] is None else "  core round trip %.0f ns, parallel speed %.2f" % (r["round_trip_ns"], r["parallel"])
         print("  %d thread(s)  %-32s %10.3g  (%.2f)%s" % (t, name, r["particle_steps_per_s"], r["particle_steps_per_s"] / base, trip))
 print("  where the time goes, ours with PendularLoop, ns per step (engines; PendularLoop's phases indented):")
 print("    %-40s %s" % ("", "  ".join("%10s" % ("%d thread(s)" % t) for t in threads)))

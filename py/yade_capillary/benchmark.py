@@ -183,7 +183,8 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     per-body phases gain from threads at the ci cell's 2 200 bodies (the default, 1000, against 20000), the fifth what
     PendularIntegrator gains. Each dict also has "phases": ns per step of each engine and of PendularLoop's
     gathering, pass and force hand-over (O.timingEnabled), the per-phase timings of the run, and
-    "round_trip_ns": core_round_trip() just before the run (the machine's mode)."""
+    "round_trip_ns": core_round_trip() just before the run (the machine's mode), and "parallel":
+    parallel_speed() just before it (whether the machine gave two cores' worth then)."""
     import json
     import tempfile
 
@@ -213,9 +214,10 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
                 e.parallelBodies = parallel_bodies
         O.run(100, True)  # interactions and bridges in place before timing
         round_trip = core_round_trip()  # the machine's mode, just before the timed steps
+        parallel = parallel_speed()
         start_timing()  # where the time goes (a clock read per engine and step, the same for every variant)
         out = {"particle_steps_per_s": len(info["flowing"]) * steps / timed_steps(steps), "phases": engine_times(steps),
-               "round_trip_ns": round_trip}
+               "round_trip_ns": round_trip, "parallel": parallel}
         loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
         out["phases"].update({"  " + k: v for k, v in loop_phases(loop_engine, steps).items()})
         O.timingEnabled = False
@@ -238,17 +240,30 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
 
 
-def core_round_trip():
-    """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
-    None if it is not built. On this project's two-vCPU VM it is 55-110 ns in one mode and 300-420 ns in
-    the other (probably the vCPUs sharing a cache or not); in the second a step on two threads ran at
-    0.8-1.1x of one thread, so a ratio of thread counts means something only with the round trips of its runs."""
+def _core_latency(*args):
+    """What build/core_latency prints with `args`, as a float; None if it is not built."""
     import subprocess
 
     exe = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "core_latency")  # the package is in build/python
     if not os.path.exists(exe):
         return None
-    return float(subprocess.run([exe], capture_output=True, text=True, check=True).stdout)
+    return float(subprocess.run([exe, *args], capture_output=True, text=True, check=True).stdout)
+
+
+def core_round_trip():
+    """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
+    None if it is not built. On this project's two-vCPU VM it is 55-110 ns in one mode and 300-420 ns in
+    the other (probably the vCPUs sharing a cache or not); in the second a step on two threads ran at
+    0.8-1.1x of one thread, so a ratio of thread counts means something only with the round trips of its runs."""
+    return _core_latency()
+
+
+def parallel_speed():
+    """The machine's parallel speed just now [-] (build/core_latency --parallel, about 20 ms): the time per
+    record of one thread updating its own records alone over that of each of two threads doing as much at
+    once; 1 when the two vCPUs give two cores' worth, 0.5 when each runs at half speed (on this project's
+    VM, 27 of 300 samples over 7 minutes, at any round trip). None if it is not built."""
+    return _core_latency("--parallel")
 
 
 # PendularLoop's phases: gathering the bodies, the pass over the interactions, the force hand-over.
