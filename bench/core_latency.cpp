@@ -2,7 +2,8 @@
 // by writing it back, 100 000 times; the median of 7 batches is printed. On this project's VM (two
 // vCPUs of an AMD EPYC) it tells the machine's two modes apart: 55-110 ns (probably both vCPUs sharing
 // a cache) and 300-420 ns (probably not: every line that one core wrote and the other reads then crosses
-// between chips, and a two-thread step of a shear cell ran at 0.8-1.1x of one thread). The
+// between chips, and a two-thread step of the ci shear cell ran at 0.8-1.1x of one thread, 1.3-1.5x
+// since the gathering streams the bodies that the other thread reads, 2026-11-27). The
 // benchmarks print it next to every timed run so that their ratios can be read with the mode they
 // were measured in. Not a test.
 // With --parallel, the machine's parallel speed instead: the time per record of one thread updating its

@@ -8,7 +8,7 @@
 #   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
 #   cache: file of the prepared cell, made if missing.
 # Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
-# this VM has a mode in which two threads gain nothing (round trip 300-420 ns instead of 55-110), and
+# this VM has a mode in which two threads gain far less (round trip 300-420 ns instead of 55-110), and
 # a ratio of thread counts holds only between runs of the same mode; and with the machine's parallel
 # speed just before it (core_latency --parallel: 1 when two threads get two cores' worth of private
 # work, 0.5 when each runs at half speed, which this VM also does at times, at any round trip).

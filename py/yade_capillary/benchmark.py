@@ -253,8 +253,9 @@ def _core_latency(*args):
 def core_round_trip():
     """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
     None if it is not built. On this project's two-vCPU VM it is 55-110 ns in one mode and 300-420 ns in
-    the other (probably the vCPUs sharing a cache or not); in the second a step on two threads ran at
-    0.8-1.1x of one thread, so a ratio of thread counts means something only with the round trips of its runs."""
+    the other (probably the vCPUs sharing a cache or not); in the second a step of the ci cell on two threads
+    ran at 0.8-1.1x of one thread (1.3-1.5x since the gathering streams the bodies that the other thread reads,
+    2026-11-27), so a ratio of thread counts means something only with the round trips of its runs."""
     return _core_latency()
 
 
