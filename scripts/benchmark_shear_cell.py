@@ -4,14 +4,17 @@
 # NewtonIntegrator instead of PendularIntegrator), same positions and
 # time step, on one and on two OpenMP threads, interleaved in one
 # run. A benchmark, not a test.
-# Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache]
+# Then, on two threads or more, repeated pairs of PendularLoop runs, one thread then two, in turn on one scene:
+# the spread and median of the gain from the second thread (one pair is as noisy as the machine).
+# Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache] [pairs]
 #   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
-#   cache: file of the prepared cell, made if missing.
+#   cache: file of the prepared cell, made if missing; pairs: 10 by default, 0 for none.
 # Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
 # this VM has a mode in which two threads gain far less (round trip 300-420 ns instead of 55-110), and
 # a ratio of thread counts holds only between runs of the same mode; and with the machine's parallel
 # speed just before it (core_latency --parallel: 1 when two threads get two cores' worth of private
 # work, 0.5 when each runs at half speed, which this VM also does at times, at any round trip).
+import statistics
 import sys
 
 from yade import O
@@ -20,7 +23,8 @@ from yade_capillary import benchmark
 
 config = sys.argv[1] if len(sys.argv) > 1 else "ci"
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
-cache = sys.argv[3] if len(sys.argv) > 3 else None
+cache = sys.argv[3] if len(sys.argv) > 3 and sys.argv[3] else None
+pairs = int(sys.argv[4]) if len(sys.argv) > 4 else 10
 threads = tuple(range(1, O.numThreads + 1))
 NAMES = ("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop", "ours, parallelBodies = 20000", "ours, NewtonIntegrator")  # the order of benchmark.shear_cell's results
 results = benchmark.shear_cell(steps, config=config, cache=cache, threads=threads)
@@ -36,4 +40,29 @@ for key in results[threads[0]][2]["phases"]:
     print("    %-40s %s" % (key, "  ".join("%10.0f" % results[t][2]["phases"][key] for t in threads)))
 for k, name in enumerate(NAMES):
     print("  speed-up from %d threads, %-32s %.2f" % (threads[-1], name, results[threads[-1]][k]["particle_steps_per_s"] / results[1][k]["particle_steps_per_s"]))
+if pairs > 0 and threads[-1] >= 2:
+    # Classed by what was measured just before the two-thread run: the round trip (the slow mode of this VM
+    # starts at about 250 ns) and the parallel speed (below 0.9: a stretch without two cores' worth).
+    slow_mode, full_speed = 250, 0.9
+    runs = benchmark.thread_pairs(pairs, steps, config=config, cache=cache)
+    print("(b) shear cell %s, ours with PendularLoop, %d pairs of %d steps on one thread then two, in turn on one scene:" % (config, pairs, steps))
+    ratios = {"all": [], "below": [], "above": [], "fast": []}
+    for k, pair in enumerate(runs, 1):
+        one, two = pair[1], pair[2]
+        ratio = two["particle_steps_per_s"] / one["particle_steps_per_s"]
+        trip = two["round_trip_ns"]
+        print("  pair %2d: %.3g -> %.3g particle-steps/s, %.2fx  (before the two-thread run: core round trip %s ns, parallel speed %s)"
+              % (k, one["particle_steps_per_s"], two["particle_steps_per_s"], ratio, "%.0f" % trip if trip is not None else "-",
+                 "%.2f" % two["parallel"] if two["parallel"] is not None else "-"))
+        ratios["all"].append(ratio)
+        if trip is not None:
+            ratios["below" if trip < slow_mode else "above"].append(ratio)
+            if trip < slow_mode and two["parallel"] is not None and two["parallel"] >= full_speed:
+                ratios["fast"].append(ratio)
+    for key, label in (("all", "all pairs"), ("below", "round trip below %d ns" % slow_mode),
+                       ("fast", "and parallel speed %.1f or more" % full_speed), ("above", "round trip %d ns or more" % slow_mode)):
+        r = sorted(ratios[key])
+        if r:
+            print("  speed-up from 2 threads, %-31s median %.2f (%.2f-%.2f), %d of %d pairs at 1.7 or more"
+                  % (label, statistics.median(r), r[0], r[-1], sum(x >= 1.7 for x in r), len(r)))
 sys.exit(0)

@@ -170,6 +170,63 @@ def timed_steps(n, poll=1e-3):
     return time.perf_counter() - t0
 
 
+class _Cell:
+    """The prepared shear cell of `config` (made in `cache`, a file, if missing; a temporary file if None) with
+    the liquid of `case`, as the benchmarks rebuild it for each law: the spheres, the time step and the
+    materials of YADE's built-in law (Willett_numeric) and of ours (willett_full)."""
+
+    def __init__(self, config, case, cache):
+        import json
+        import tempfile
+
+        from . import shearcell
+
+        path = cache or os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
+        if not os.path.exists(path):
+            shearcell.prepare(config, case, path, log=lambda *a: None)
+        O.load(path)
+        self.info = json.loads(O.tags["shearcell"])
+        self.cfg, self.liquid = self.info["cfg"], shearcell.CASES[case]
+        flowing = set(self.info["flowing"])
+        self.bodies = [(b.state.pos, b.shape.radius, b.id in flowing) for b in O.bodies]
+        self.dt = O.dt
+
+    def builtin_material(self):
+        cfg, liquid = self.cfg, self.liquid
+        return ViscElCapMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, Capillar=True, Vb=liquid["Vb"],
+                            gamma=liquid["gamma"], theta=math.degrees(liquid["theta"]), CapillarType="Willett_numeric")
+
+    def our_material(self):
+        cfg, liquid = self.cfg, self.liquid
+        return PendularMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, wet=True, Vb=liquid["Vb"],
+                           gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
+
+    def build(self, material, loop, nthreads, parallel_bodies=None, integrator=None):
+        """A new scene of the cell with `material`, `loop` (as shearcell.run_engines takes it) and every engine
+        on `nthreads` threads, run 100 steps (interactions and bridges in place before timing). YADE's own setup
+        (NewtonIntegrator) for the built-in law and our Law2 in InteractionLoop; PendularLoop with
+        PendularIntegrator, as scene.engines gives them by default."""
+        from . import shearcell
+
+        O.reset()
+        O.dt = self.dt
+        mat = O.materials.append(material)
+        for pos, radius, free in self.bodies:
+            O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
+        O.engines = shearcell.run_engines(self.info, loop, integrator=integrator or ("pendular" if loop == "fused" else "newton"))
+        set_threads(nthreads, parallel_bodies)
+        O.run(100, True)
+
+
+def set_threads(nthreads, parallel_bodies=None):
+    """Every engine of O.engines on `nthreads` OpenMP threads (ompThreads; yade must be started with -j at least
+    that many), and parallelBodies, where an engine has it, set to `parallel_bodies` unless None."""
+    for e in O.engines:
+        e.ompThreads = nthreads
+        if parallel_bodies is not None and hasattr(e, "parallelBodies"):
+            e.parallelBodies = parallel_bodies
+
+
 def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None, threads=(1,)):
     """The prepared shear cell rotating, with YADE's built-in law (Willett_numeric) and with ours
     (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
@@ -185,48 +242,22 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     gathering, pass and force hand-over (O.timingEnabled), the per-phase timings of the run, and
     "round_trip_ns": core_round_trip() just before the run (the machine's mode), and "parallel":
     parallel_speed() just before it (whether the machine gave two cores' worth then)."""
-    import json
-    import tempfile
-
-    from . import shearcell
-
-    path = cache or os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
-    if not os.path.exists(path):
-        shearcell.prepare(config, case, path, log=lambda *a: None)
-    O.load(path)
-    info = json.loads(O.tags["shearcell"])
-    cfg, liquid = info["cfg"], shearcell.CASES[case]
-    bodies = [(b.state.pos, b.shape.radius, b.id in set(info["flowing"])) for b in O.bodies]
-    dt = O.dt
+    cell = _Cell(config, case, cache)
+    flowing = len(cell.info["flowing"])
 
     def timed(material, loop, nthreads, parallel_bodies=None, integrator=None):
-        O.reset()
-        O.dt = dt
-        mat = O.materials.append(material)
-        for pos, radius, free in bodies:
-            O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
-        # YADE's own setup (NewtonIntegrator) for the built-in law and our Law2 in InteractionLoop;
-        # PendularLoop with PendularIntegrator, as scene.engines gives them by default.
-        O.engines = shearcell.run_engines(info, loop, integrator=integrator or ("pendular" if loop == "fused" else "newton"))
-        for e in O.engines:
-            e.ompThreads = nthreads
-            if parallel_bodies is not None and hasattr(e, "parallelBodies"):
-                e.parallelBodies = parallel_bodies
-        O.run(100, True)  # interactions and bridges in place before timing
+        cell.build(material, loop, nthreads, parallel_bodies, integrator)
         round_trip = core_round_trip()  # the machine's mode, just before the timed steps
         parallel = parallel_speed()
         start_timing()  # where the time goes (a clock read per engine and step, the same for every variant)
-        out = {"particle_steps_per_s": len(info["flowing"]) * steps / timed_steps(steps), "phases": engine_times(steps),
+        out = {"particle_steps_per_s": flowing * steps / timed_steps(steps), "phases": engine_times(steps),
                "round_trip_ns": round_trip, "parallel": parallel}
         loop_engine = next(e for e in O.engines if isinstance(e, InteractionLoop))
         out["phases"].update({"  " + k: v for k, v in loop_phases(loop_engine, steps).items()})
         O.timingEnabled = False
         return out
 
-    builtin_mat = lambda: ViscElCapMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, Capillar=True,
-                                       Vb=liquid["Vb"], gamma=liquid["gamma"], theta=math.degrees(liquid["theta"]), CapillarType="Willett_numeric")
-    ours_mat = lambda: PendularMat(tc=cfg["tc"], en=cfg["en"], et=cfg["et"], density=cfg["rho"], frictionAngle=0, wet=True, Vb=liquid["Vb"],
-                                   gamma=liquid["gamma"], theta=liquid["theta"], model=liquid["model"])
+    builtin_mat, ours_mat = cell.builtin_material, cell.our_material
     loop = lambda: InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys()],
                                    [Law2_ScGeom_ViscElCapPhys_Basic()])
     runs = {t: [[], [], [], [], []] for t in threads}
@@ -238,6 +269,29 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
             runs[t][3].append(timed(ours_mat(), "fused", t, parallel_bodies=20000))
             runs[t][4].append(timed(ours_mat(), "fused", t, integrator="newton"))
     return {t: [max(r, key=lambda x: x["particle_steps_per_s"]) for r in runs[t]] for t in threads}
+
+
+def thread_pairs(pairs=10, steps=1000, config="ci", case="wet13.6nl", cache=None, warmup=100):
+    """Our law in PendularLoop on the prepared shear cell (as in shear_cell), `pairs` pairs of runs of `steps`
+    steps, one thread then two, in turn on one scene going on (yade must be started with -j2 at least), each
+    after `warmup` untimed steps on its thread count (the loop shares its work out again for it). One pair is
+    as noisy as the machine (its two modes, see core_round_trip, and its stretches of half speed, see
+    parallel_speed): the pairs give the spread of the gain from the second thread and its median. Returns a list
+    of {threads: {"particle_steps_per_s", "round_trip_ns", "parallel"}} (the round trip and parallel speed
+    measured just before that run)."""
+    cell = _Cell(config, case, cache)
+    flowing = len(cell.info["flowing"])
+    cell.build(cell.our_material(), "fused", 1)
+    out = []
+    for _ in range(pairs):
+        pair = {}
+        for nthreads in (1, 2):
+            set_threads(nthreads)
+            O.run(warmup, True)
+            round_trip, parallel = core_round_trip(), parallel_speed()
+            pair[nthreads] = {"particle_steps_per_s": flowing * steps / timed_steps(steps), "round_trip_ns": round_trip, "parallel": parallel}
+        out.append(pair)
+    return out
 
 
 def _core_latency(*args):
