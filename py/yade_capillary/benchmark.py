@@ -5,7 +5,8 @@ every neighbour pair bridged at the first step (3 n^2 (n-1) bridges; 11 520 for 
 variant runs the same scene with the same seed and time step in one process; the interaction-loop
 time is read from YADE's engine timing and divided by the number of real interaction-steps.
 shear_cell() compares the laws on the rotating shear cell (whole-run particle-steps per second),
-memory() the bytes per bridge, gladkyy_probe() projects the cost of Gladkyy's full cell.
+thread_pairs() repeats one- and two-thread runs of our loop on it (the spread of the gain from the second
+thread), memory() the bytes per bridge, gladkyy_probe() projects the cost of Gladkyy's full cell.
 """
 import math
 import os
