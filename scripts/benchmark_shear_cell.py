@@ -8,13 +8,15 @@
 # the spread and median of the gain from the second thread (one pair is as noisy as the machine).
 # Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache] [pairs]
 #   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
-#   cache: file of the prepared cell, made if missing ('' or none: a temporary file); pairs: 10 by default, 0 for none.
+#   cache: file of the prepared cell, made if missing ('' or none: a temporary file, removed at exit); pairs: 10 by default, 0 for none.
 # Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
 # this VM has a mode in which two threads gain far less (round trip 300-420 ns instead of 55-110), and
 # a ratio of thread counts holds only between runs of the same mode; and with the machine's parallel
 # speed just before it (core_latency --parallel: 1 when two threads get two cores' worth of private
 # work, 0.5 when each runs at half speed, which this VM also does at times, at any round trip).
+import atexit
 import os
+import shutil
 import statistics
 import sys
 import tempfile
@@ -25,9 +27,13 @@ from yade_capillary import benchmark
 
 config = sys.argv[1] if len(sys.argv) > 1 else "ci"
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
-# One prepared cell for the comparison and the pairs: without a cache given, a temporary file, so that the
-# pairs do not prepare the cell again (minutes for the validation cell).
-cache = sys.argv[3] if len(sys.argv) > 3 and sys.argv[3] else os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
+# One prepared cell for the comparison and the pairs: without a cache given, a temporary file (removed at exit),
+# so that the pairs do not prepare the cell again (minutes for the validation cell).
+cache = sys.argv[3] if len(sys.argv) > 3 and sys.argv[3] else None
+if cache is None:
+    scratch = tempfile.mkdtemp()
+    atexit.register(shutil.rmtree, scratch, ignore_errors=True)
+    cache = os.path.join(scratch, "cell.yade.gz")
 pairs = int(sys.argv[4]) if len(sys.argv) > 4 else 10
 threads = tuple(range(1, O.numThreads + 1))
 NAMES = ("YADE built-in law", "ours, Law2 in InteractionLoop", "ours, PendularLoop", "ours, parallelBodies = 20000", "ours, NewtonIntegrator")  # the order of benchmark.shear_cell's results
