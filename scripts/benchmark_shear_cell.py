@@ -75,4 +75,14 @@ if pairs > 0 and threads[-1] >= 2:
         if r:
             print("  speed-up from 2 threads, %-31s median %.2f (%.2f-%.2f), %d of %d pairs at 1.7 or more"
                   % (label, statistics.median(r), r[0], r[-1], sum(x >= 1.7 for x in r), len(r)))
+    # Why one pair differs from the next: each thread's time in the pass, step by step.
+    noise = benchmark.thread_noise(steps, config=config, cache=cache)
+    print("(b) shear cell %s, PendularLoop's pass on the list, each thread's busy time per step, %d passes (PendularLoop.traceBusy):" % (config, noise[2]["passes"]))
+    for nthreads in (1, 2):
+        stats = noise[nthreads]
+        for k, (p, lag) in enumerate(zip(stats["percentiles"], stats["lag1"])):
+            print("  %d thread(s), thread %d: %.1f / %.1f / %.1f / %.1f us (10th / 50th / 90th / 99th percentile), correlation with the step before %.2f"
+                  % (nthreads, k, p[0], p[1], p[2], p[3], lag))
+    print("  2 threads: correlation of the two threads' times in a step %.2f; the slower thread exceeds the mean of the two by %.1f us per step"
+          % (noise[2]["between"], noise[2]["join_us"]))
 sys.exit(0)

@@ -441,6 +441,10 @@ void PendularLoop::action()
 	}
 	// teamComplete: each thread computed its part of the list (then the flush reads only parts and borders).
 	bool teamComplete = true;
+	// This pass's entries of busyTimes (see traceBusy), one per thread, written by each thread.
+	const size_t traceAt = busyTimes.size();
+	const bool   tracing = fast && traceBusy > 0;
+	if (tracing) busyTimes.resize(traceAt + size_t(threads), NaN);
 #ifdef YADE_OPENMP
 #pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder) reduction(&& : teamComplete)
 #endif
@@ -488,8 +492,9 @@ void PendularLoop::action()
 				handOverBorders(c.thread, summed);
 				busy += Clock::now() - handing0;
 			}
-			if (partsValid && pendular::teamSize() == threads && long(paceTime.size()) == threads)
-				paceTime[size_t(c.thread)] += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(busy).count());
+			const Real busyNs = Real(std::chrono::duration_cast<std::chrono::nanoseconds>(busy).count());
+			if (partsValid && pendular::teamSize() == threads && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += busyNs;
+			if (tracing && c.thread < threads) busyTimes[traceAt + size_t(c.thread)] = busyNs;
 		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
 			long     before    = -2;
@@ -521,6 +526,7 @@ void PendularLoop::action()
 	// The flush may read the arrays by parts and borders (see flushForces).
 	const bool parted = partsValid && teamComplete;
 	if (parted) ++paceSteps;
+	if (tracing) --traceBusy;
 	nSkipped = size - m;
 	fused += nSkipped;
 	apart += nSkipped;

@@ -295,6 +295,52 @@ def thread_pairs(pairs=10, steps=1000, config="ci", case="wet13.6nl", cache=None
     return out
 
 
+def thread_noise(passes=1000, config="ci", case="wet13.6nl", cache=None, warmup=200):
+    """How each thread's time in PendularLoop's pass varies from step to step, on the prepared shear cell (as in
+    thread_pairs): `passes` passes on the list (see PendularLoop.skipFar) traced with PendularLoop.traceBusy after
+    `warmup` steps, on two threads, then on one. A static share of the work (fixed between two full passes) waits
+    at each step's join for the slower thread: this is what that costs on the machine. Returns {threads: dict}
+    with, per thread of the pass, "percentiles" (10th, 50th, 90th, 99th of its busy time [us]) and "lag1" (the
+    correlation of its busy time with that of the step before: 1 for a slow drift, which the measured paces
+    follow, 0 for noise from step to step), and on two threads "between" (the correlation of the two threads'
+    times in a step) and "join_us" (the mean of the slower thread's time less the mean of the two [us]: what
+    each step of the pass loses to the spread, with every step's share equal on average)."""
+    cell = _Cell(config, case, cache)
+    cell.build(cell.our_material(), "fused", 1)
+    loop = next(e for e in O.engines if isinstance(e, InteractionLoop))
+    out = {}
+    for nthreads in (2, 1):
+        set_threads(nthreads)
+        O.run(warmup, True)
+        first = len(loop.busyTimes)
+        loop.traceBusy = passes
+        for _ in range(100):  # passes on the list are most steps (the full ones come at the collider's runs)
+            if loop.traceBusy == 0:
+                break
+            O.run(passes, True)
+        loop.traceBusy = 0
+        flat = [t / 1e3 for t in loop.busyTimes[first:]]
+        series = [flat[k::nthreads] for k in range(nthreads)]
+        stats = {"passes": len(series[0]), "percentiles": [], "lag1": []}
+        for x in series:
+            ordered = sorted(x)
+            stats["percentiles"].append([ordered[min(len(x) - 1, int(q * len(x)))] for q in (0.1, 0.5, 0.9, 0.99)])
+            stats["lag1"].append(_correlation(x[:-1], x[1:]))
+        if nthreads == 2:
+            stats["between"] = _correlation(series[0], series[1])
+            stats["join_us"] = sum(max(a, b) - (a + b) / 2 for a, b in zip(*series)) / len(series[0])
+        out[nthreads] = stats
+    return out
+
+
+def _correlation(x, y):
+    """Pearson's correlation of two equally long sequences (nan if one is constant)."""
+    mx, my = sum(x) / len(x), sum(y) / len(y)
+    sxy = sum((a - mx) * (b - my) for a, b in zip(x, y))
+    sxx, syy = sum((a - mx) ** 2 for a in x), sum((b - my) ** 2 for b in y)
+    return sxy / math.sqrt(sxx * syy) if sxx > 0 and syy > 0 else float("nan")
+
+
 def _core_latency(*args):
     """What build/core_latency prints with `args`, as a float; None if it is not built."""
     import subprocess

@@ -256,6 +256,16 @@ for box in ("walls", "facets"):
             else:
                 ck.true(len(pace) == 2 and all(0.25 <= p <= 4 for p in pace) and pace != [1.0, 1.0],
                         "%s, %d threads: paces measured, within [1/4, 4] (%s)" % (tag, threads, pace))
+            # Each thread's busy time in traced passes on the list (PendularLoop.traceBusy, read by benchmark.thread_noise):
+            # one positive time per thread of the pass and traced pass, nothing left unwritten (NaN).
+            first, team = len(loop.busyTimes), min(threads, O.numThreads)
+            loop.traceBusy = 10
+            for _ in range(20):
+                if loop.traceBusy > 0:
+                    O.run(10, True)
+            times = list(loop.busyTimes[first:])
+            ck.true(loop.traceBusy == 0 and len(times) == 10 * team and all(0 < t < 1e9 for t in times),
+                    "%s, %d threads: 10 traced passes, %d busy times of %d thread(s), all in (0, 1 s) (%s)" % (tag, threads, len(times), team, times[:4]))
             ck.true(diff <= BOUND, "%s, %d threads: scaled difference %.3g <= %g" % (tag, threads, diff, BOUND))
             ck.true(totals[0] == ref_totals[0], "%s, %d threads: nBridges %d == %d" % (tag, threads, totals[0], ref_totals[0]))
             for k, name in ((1, "liquidVolume"), (2, "liquidFormed"), (3, "liquidReleased")):
