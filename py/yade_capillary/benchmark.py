@@ -314,12 +314,16 @@ def thread_noise(passes=1000, config="ci", case="wet13.6nl", cache=None, warmup=
         O.run(warmup, True)
         first = len(loop.busyTimes)
         loop.traceBusy = passes
-        for _ in range(100):  # passes on the list are most steps (the full ones come at the collider's runs)
-            if loop.traceBusy == 0:
-                break
+        while loop.traceBusy > 0:  # passes on the list are most steps (the full ones come at the collider's runs)
+            left = loop.traceBusy
             O.run(passes, True)
+            if loop.traceBusy == left:  # none in as many steps: the loop keeps no list (see PendularLoop.skipFar)
+                break
         loop.traceBusy = 0
         flat = [t / 1e3 for t in loop.busyTimes[first:]]
+        if len(flat) < 2 * nthreads:
+            raise RuntimeError("thread_noise: %d passes on the list in the traced steps of the %s cell on %d thread(s); PendularLoop keeps a list only "
+                               "with keepRecords and skipFar" % (len(flat) // nthreads, config, nthreads))
         series = [flat[k::nthreads] for k in range(nthreads)]
         stats = {"passes": len(series[0]), "percentiles": [], "lag1": []}
         for x in series:
