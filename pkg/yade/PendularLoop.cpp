@@ -494,7 +494,7 @@ void PendularLoop::action()
 			}
 			const Real busyNs = Real(std::chrono::duration_cast<std::chrono::nanoseconds>(busy).count());
 			if (partsValid && pendular::teamSize() == threads && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += busyNs;
-			if (tracing && c.thread < threads) busyTimes[traceAt + size_t(c.thread)] = busyNs;
+			if (tracing) busyTimes[traceAt + size_t(c.thread)] = busyNs;
 		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
 			long     before    = -2;

@@ -11,6 +11,7 @@ thread), memory() the bytes per bridge, gladkyy_probe() projects the cost of Gla
 import math
 import os
 import random
+import statistics
 import time
 
 from yade import O
@@ -338,11 +339,11 @@ def thread_noise(passes=1000, config="ci", case="wet13.6nl", cache=None, warmup=
 
 
 def _correlation(x, y):
-    """Pearson's correlation of two equally long sequences (nan if one is constant)."""
-    mx, my = sum(x) / len(x), sum(y) / len(y)
-    sxy = sum((a - mx) * (b - my) for a, b in zip(x, y))
-    sxx, syy = sum((a - mx) ** 2 for a in x), sum((b - my) ** 2 for b in y)
-    return sxy / math.sqrt(sxx * syy) if sxx > 0 and syy > 0 else float("nan")
+    """Pearson's correlation of two equally long sequences (statistics.correlation; nan if one is constant)."""
+    try:
+        return statistics.correlation(x, y)
+    except statistics.StatisticsError:
+        return float("nan")
 
 
 def _core_latency(*args):
