@@ -51,6 +51,7 @@ def measure(label, material, loop, n, steps, seed, vel, chunk=100, film=0.0, rec
     records: PendularLoop.keepRecords; sort: False sets PendularLoop.sortDisorder to 0."""
     build(material, n, seed, vel, film)
     O.engines = engines(loop=loop)
+    end_stamp()
     if hasattr(O.engines[2], "keepRecords"):
         O.engines[2].keepRecords = records
         if not sort:
@@ -159,17 +160,56 @@ def memory():
     return dict(PendularLoop().memory())
 
 
-def timed_steps(n, poll=1e-3):
-    """Run n steps of O (O.run, in YADE's simulation thread); returns the wall time [s], to within `poll`
-    [s]. Not O.run(n, True): its wait returns at the first of its 40 ms polls after the last step
-    (measured on this machine: 40.3 ms for O.run(1, True) without engines), which added 0-40 ms at
-    random to every timed run (up to 16 % of a 1000-step ci-cell run on two threads, 0.24 s). O.run, not O.step()
-    in a loop: the steps run in YADE's simulation thread, as in the runs of users' scripts."""
+# The label of the PyRunner that stamps the end of a timed run (see timed_steps).
+END_STAMP = "benchmarkEndStamp"
+_end = {"t": None}
+
+
+def _stamp_end():
+    """The wall time at the end of the last step of a timed run; called by the END_STAMP PyRunner, in YADE's
+    simulation thread."""
+    _end["t"] = time.perf_counter()
+
+
+def end_stamp():
+    """The END_STAMP PyRunner of O.engines, appended (last) if missing. The benchmarks append it right after
+    setting O.engines, before their untimed steps: assigning O.engines makes PendularLoop drop its records,
+    which the next step rebuilds. It stays alive between timed runs (assigning Engine.dead does the same);
+    between them it runs no command (firstIterRun is past and iterPeriod out of reach) and costs a clock
+    read per step."""
+    from yade.wrapper import PyRunner
+
+    for e in O.engines:
+        if e.label == END_STAMP:
+            return e
+    stamp = PyRunner(command="from yade_capillary import benchmark; benchmark._stamp_end()", iterPeriod=2**62, initRun=False,
+                     label=END_STAMP)
+    O.engines = O.engines + [stamp]
+    return stamp
+
+
+def timed_steps(n):
+    """Run n steps of O (O.run, in YADE's simulation thread, then O.wait as O.run(n, True) does); returns the
+    wall time [s] from O.run to the end of the n-th step, stamped by the END_STAMP PyRunner in that step
+    (firstIterRun). Not the time at which the wait returns: O.wait polls every 40 ms (O.run(1, True) without
+    engines took 40.3 ms here), which added 0-40 ms at random to every timed run. Not a poll of O.running every
+    millisecond either (the benchmarks until the nineteenth session): on this two-vCPU machine its 1000 wake-ups
+    per second share the cores with the two threads of a two-thread run (ci cell, 1000-step runs alternated in
+    one process, both stamped: a two-thread step 5 %, 3.4 % and 1 % slower with the 1 ms poll than with 50 ms
+    polls, medians of 10, 12 and 24 runs). O.run, not O.step() in a loop: the steps run in YADE's simulation
+    thread, as in the runs of users' scripts."""
+    if n < 1 or O.iter + n - 1 < 1:
+        raise ValueError("timed_steps: n = %d from iteration %d; needs n >= 1 and a last step after iteration 0 (PyRunner.firstIterRun > 0)"
+                         % (n, O.iter))
+    stamp = end_stamp()
+    stamp.nDone, stamp.firstIterRun = 0, O.iter + n - 1
+    _end["t"] = None
     t0 = time.perf_counter()
     O.run(n)
-    while O.running:
-        time.sleep(poll)
-    return time.perf_counter() - t0
+    O.wait()
+    if _end["t"] is None:
+        raise RuntimeError("timed_steps: the %s PyRunner did not run in the last of the %d steps" % (END_STAMP, n))
+    return _end["t"] - t0
 
 
 class _Cell:
@@ -216,6 +256,7 @@ class _Cell:
         for pos, radius, free in self.bodies:
             O.bodies.append(sphere(pos, radius, material=mat, fixed=not free))
         O.engines = shearcell.run_engines(self.info, loop, integrator=integrator or ("pendular" if loop == "fused" else "newton"))
+        end_stamp()
         set_threads(nthreads, parallel_bodies)
         O.run(100, True)
 
@@ -397,7 +438,7 @@ def loop_phases(loop, per):
 def engine_times(steps):
     """ns per step of each engine of O.engines over the last `steps` steps (O.timingEnabled must have
     been on, with execTime reset before them)."""
-    return {"%s%s" % (e.__class__.__name__, "(%s)" % e.label if e.label else ""): e.execTime / steps for e in O.engines}
+    return {"%s%s" % (e.__class__.__name__, "(%s)" % e.label if e.label else ""): e.execTime / steps for e in O.engines if e.label != END_STAMP}
 
 
 def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=100, state=None):
@@ -424,6 +465,7 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
         O.dt = cfg["dt_over_tc"] * cfg["tc"]
     else:
         ids = shearcell.load_state(state, loop=loop)
+    end_stamp()
     O.run(100, True)
     collider = next(e for e in O.engines if e.label == "collider")
     runs0 = collider.numAction

@@ -1,0 +1,40 @@
+# benchmark.timed_steps, which every timed run of ./run.sh bench goes through: the wall time of n steps is
+# stamped in the n-th step by a PyRunner (benchmark.END_STAMP), not read when a poll of the main thread
+# notices the end. Checked on a small wet packing with PendularLoop (whose records must survive the stamp):
+# - the stamp runs in exactly the last of the n steps, once: its iterLast is the iteration of that step
+#   (the first iteration of the run plus n - 1) and nDone is 1, for several n and runs in a row;
+# - the time it returns lies between the run's start and the return of O.wait (both read around the call
+#   here): it cannot come from an earlier run or from after the wait;
+# - the runner is appended once (the engine list keeps its length over the runs), and PendularLoop keeps its
+#   records through the timed runs (nRecorded > 0 after them, as before them);
+# - n < 1 raises ValueError naming n.
+import time
+
+from yade import O
+from yade.wrapper import PendularMat
+
+from yade_capillary import benchmark
+from yade_capillary.testing import Checker
+
+ck = Checker("test_timed_steps")
+benchmark.build(PendularMat(tc=benchmark.TC, en=benchmark.EN, et=benchmark.EN, density=benchmark.RHO, frictionAngle=0, wet=True, Vb=benchmark.VB,
+                            gamma=benchmark.GAMMA, theta=0, model="willett_full"), 5, 1, 0.005)
+O.engines = benchmark.engines(loop="fused")
+stamp = benchmark.end_stamp()
+O.run(20, True)
+loop = O.engines[2]
+ck.true(loop.nRecorded > 0, "PendularLoop keeps records before the timed runs (nRecorded %d)" % loop.nRecorded)
+length = len(O.engines)
+for n in (1, 7, 50, 50):
+    first = O.iter
+    before = time.perf_counter()
+    t = benchmark.timed_steps(n)
+    after = time.perf_counter()
+    ck.true(O.iter == first + n, "timed_steps(%d) ran %d steps" % (n, O.iter - first))
+    ck.true(stamp.iterLast == first + n - 1 and stamp.nDone == 1,
+            "timed_steps(%d): the stamp ran once (nDone %d) in the last step, iteration %d (iterLast %d)" % (n, stamp.nDone, first + n - 1, stamp.iterLast))
+    ck.true(0 < t <= after - before, "timed_steps(%d) returned %g s, within the %g s around the call" % (n, t, after - before))
+    ck.true(len(O.engines) == length, "the stamp is appended once (%d engines, %d before)" % (len(O.engines), length))
+ck.true(loop.nRecorded > 0, "PendularLoop keeps records through the timed runs (nRecorded %d)" % loop.nRecorded)
+ck.raises(ValueError, lambda: benchmark.timed_steps(0), ["n = 0"], "timed_steps(0)")
+ck.finish()
