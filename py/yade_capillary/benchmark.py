@@ -172,18 +172,17 @@ def _stamp_end():
 
 
 def end_stamp():
-    """The END_STAMP PyRunner of O.engines, appended (last) if missing. The benchmarks append it right after
-    setting O.engines, before their untimed steps: assigning O.engines makes PendularLoop drop its records,
-    which the next step rebuilds. It stays alive between timed runs (assigning Engine.dead does the same);
-    between them it runs no command (firstIterRun is past and iterPeriod out of reach) and costs a clock
-    read per step."""
+    """Append the END_STAMP PyRunner to O.engines (last) unless it is there; returns it. For timed_steps: the
+    benchmarks call it right after they set O.engines, before their untimed steps, since assigning O.engines
+    makes PendularLoop drop its records, which the next step rebuilds. It stays alive between timed runs
+    (assigning Engine.dead would drop the records too); between them it runs no command (firstIterRun is past,
+    no period) and costs a clock read per step. Its command binds no name in __main__, where PyRunner runs it."""
     from yade.wrapper import PyRunner
 
     for e in O.engines:
         if e.label == END_STAMP:
             return e
-    stamp = PyRunner(command="from yade_capillary import benchmark; benchmark._stamp_end()", iterPeriod=2**62, initRun=False,
-                     label=END_STAMP)
+    stamp = PyRunner(command="__import__('yade_capillary.benchmark', fromlist=['_stamp_end'])._stamp_end()", initRun=False, label=END_STAMP)
     O.engines = O.engines + [stamp]
     return stamp
 
@@ -191,8 +190,9 @@ def end_stamp():
 def timed_steps(n):
     """Run n steps of O (O.run, in YADE's simulation thread, then O.wait as O.run(n, True) does); returns the
     wall time [s] from O.run to the end of the n-th step, stamped by the END_STAMP PyRunner in that step
-    (firstIterRun). Not the time at which the wait returns: O.wait polls every 40 ms (O.run(1, True) without
-    engines took 40.3 ms here), which added 0-40 ms at random to every timed run. Not a poll of O.running every
+    (firstIterRun), which must be the last engine (end_stamp). Not the time at which the wait returns: O.wait
+    polls every 40 ms (O.run(1, True) without engines took 40.3 ms here), which added 0-40 ms at random to every
+    timed run. Not a poll of O.running every
     millisecond either (the benchmarks until the nineteenth session): on this two-vCPU machine its 1000 wake-ups
     per second share the cores with the two threads of a two-thread run (ci cell, 1000-step runs alternated in
     one process, both stamped: a two-thread step 5 %, 3.4 % and 1 % slower with the 1 ms poll than with 50 ms
@@ -201,12 +201,20 @@ def timed_steps(n):
     if n < 1 or O.iter + n - 1 < 1:
         raise ValueError("timed_steps: n = %d from iteration %d; needs n >= 1 and a last step after iteration 0 (PyRunner.firstIterRun > 0)"
                          % (n, O.iter))
-    stamp = end_stamp()
+    # Not appended here: that would drop PendularLoop's records inside the timed steps.
+    engines_now = O.engines
+    if not engines_now or engines_now[-1].label != END_STAMP or engines_now[-1].dead:
+        raise RuntimeError("timed_steps: the last engine of O.engines must be the live %s PyRunner; call benchmark.end_stamp() right after "
+                           "assigning O.engines" % END_STAMP)
+    stamp = engines_now[-1]
     stamp.nDone, stamp.firstIterRun = 0, O.iter + n - 1
     _end["t"] = None
     t0 = time.perf_counter()
-    O.run(n)
-    O.wait()
+    try:
+        O.run(n)
+        O.wait()
+    finally:
+        stamp.nDone = 1  # disarmed, also after a run that stopped early: it never takes the GIL in a later step
     if _end["t"] is None:
         raise RuntimeError("timed_steps: the %s PyRunner did not run in the last of the %d steps" % (END_STAMP, n))
     return _end["t"] - t0
