@@ -192,12 +192,11 @@ def timed_steps(n):
     wall time [s] from O.run to the end of the n-th step, stamped by the END_STAMP PyRunner in that step
     (firstIterRun), which must be the last engine (end_stamp). Not the time at which the wait returns: O.wait
     polls every 40 ms (O.run(1, True) without engines took 40.3 ms here), which added 0-40 ms at random to every
-    timed run. Not a poll of O.running every
-    millisecond either (the benchmarks until the nineteenth session): on this two-vCPU machine its 1000 wake-ups
-    per second share the cores with the two threads of a two-thread run (ci cell, 1000-step runs alternated in
-    one process, both stamped: a two-thread step 5 %, 3.4 % and 1 % slower with the 1 ms poll than with 50 ms
-    polls, medians of 10, 12 and 24 runs). O.run, not O.step() in a loop: the steps run in YADE's simulation
-    thread, as in the runs of users' scripts."""
+    timed run. Not a poll of O.running every millisecond either (the benchmarks until the nineteenth session):
+    on this two-vCPU machine its 1000 wake-ups per second share the cores with the two threads of a two-thread
+    run (ci cell, 1000-step runs alternated in one process, both stamped: a two-thread step 5 %, 3.4 % and 1 %
+    slower with the 1 ms poll than with 50 ms polls, medians of 10, 12 and 24 runs). O.run, not O.step() in a
+    loop: the steps run in YADE's simulation thread, as in the runs of users' scripts."""
     if n < 1 or O.iter + n - 1 < 1:
         raise ValueError("timed_steps: n = %d from iteration %d; needs n >= 1 and a last step after iteration 0 (PyRunner.firstIterRun > 0)"
                          % (n, O.iter))
