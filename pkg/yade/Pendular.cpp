@@ -203,15 +203,22 @@ namespace {
 	}
 	// The viscous forces of a bridge (eta > 0) are dashpots in parallel with the contact's; their
 	// coefficients are largest at contact (S_eff = S_min), which bounds the separated bridge too.
+	// A film-mode pair has no bridge yet when its interaction is made (its volume is known only when
+	// it forms): its limit is that of the largest bridge it can form, VbMax. That bounds every
+	// volume: Pitois' coefficient grows with V (Elskamp2018 eq. 26), Adams-Perchard's and Goldman's
+	// do not depend on it (eq. 25, 28, 29).
 	Real pairCriticalDt(const PendularPhys& p, const Body& b1, const Body& b2)
 	{
 		if (heavy(b1) && heavy(b2)) return std::numeric_limits<Real>::infinity();
 		Real cn = p.cn, cs = p.cs;
-		if (p.viscous) {
+		std::shared_ptr<const capillary::ViscousBridge> viscous = p.viscous;
+		if (!viscous && p.wet && p.film && p.eta > 0)
+			viscous = p.viscousOf(p.VbMax);
+		if (viscous) {
 			double ct, cr;
 			bool near;
-			p.viscous->tangential_coefficients(0, ct, cr, near);
-			cn += p.viscous->normal_coefficient(0);
+			viscous->tangential_coefficients(0, ct, cr, near);
+			cn += viscous->normal_coefficient(0);
 			cs += ct + cr;
 		}
 		return math::min(oscillatorLimit(p.kn, cn, effectiveMass(b1, b2)), oscillatorLimit(p.ks, cs, tangentialMass(b1, b2)));
@@ -223,6 +230,9 @@ void PendularCheck::action()
 {
 	std::string message;
 	bool        loopSeen = false;
+	// A new bound (or a new engine after O.load): the step's reports were made with the old one.
+	const bool fresh = !(alarmBound == maxOverlap) || alarmBodies != scene->bodies->size();
+	Body::id_t newId1 = -1, newId2 = -1; // the pair of a new smallest critical time step
 	for (const auto& engine : scene->engines) {
 		if (engine.get() == this && !loopSeen)
 			message = "PendularCheck must come after the interaction loop in O.engines (it settles the liquid of the step's bridges and raises "
@@ -237,25 +247,89 @@ void PendularCheck::action()
 				} catch (const std::invalid_argument& e) {
 					if (message.empty()) message = e.what();
 				}
+				law->zeroEmptyTotals();
+				checkOverlaps(*law, fresh);
 			}
 		for (const auto& functor : loop->physDispatcher->functors) {
 			const auto ip2 = YADE_PTR_DYN_CAST<Ip2_PendularMat_PendularMat_PendularPhys>(functor);
 			if (!ip2) continue;
-			criticalDt                = math::min(criticalDt, ip2->takeCriticalDt());
+			const auto taken = ip2->takeCriticalDt();
+			if (taken.dt < criticalDt) {
+				criticalDt   = taken.dt;
+				criticalPair = Vector2i(taken.id1, taken.id2);
+				newId1       = taken.id1;
+				newId2       = taken.id2;
+			}
 			const std::string problem = ip2->takeError(scene);
 			if (message.empty()) message = problem;
 		}
 	}
-	if (scene->dt > dtSafety * criticalDt && scene->dt != warnedDt) {
-		warnedDt = scene->dt;
-		++dtWarnings;
-		LOG_WARN(
-		        "O.dt = " << capillary::format_value(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
-		                  << capillary::format_value(criticalDt)
-		                  << " s of the interactions so far: contacts may gain energy or diverge; yade_capillary.scene.stable_dt() gives a "
-		                     "stable time step");
+	if (fresh) {
+		alarmBound  = maxOverlap;
+		alarmBodies = scene->bodies->size();
 	}
+	// Checked after the films are settled, so that a bad value loses no liquid of this step.
+	if (message.empty() && !(maxOverlap > 0 && maxOverlap <= 2))
+		message = "PendularCheck.maxOverlap = " + capillary::format_value(maxOverlap) + "; allowed: (0, 2] (times the smaller radius of a pair)";
+	if (message.empty() && !(dtSafety > 0 && dtSafety <= 1))
+		message = "PendularCheck.dtSafety = " + capillary::format_value(dtSafety) + "; allowed: (0, 1] (times the critical time step)";
+	if (message.empty()) message = checkDt(newId1, newId2);
 	if (!message.empty()) raiseInStep(scene, message);
+}
+
+void PendularCheck::checkOverlaps(Law2_ScGeom_PendularPhys_Bridge& law, bool fresh)
+{
+	const auto report = law.takeOverlaps();
+	if (fresh) {
+		// The alarm is maxOverlap times the scene's smallest sphere radius: no contact above the
+		// bound is below it. Bodies are scanned only when their number or the bound changes.
+		Real smallest = std::numeric_limits<Real>::infinity();
+		for (const auto& b : *scene->bodies)
+			if (b)
+				if (const auto* sphere = dynamic_cast<const Sphere*>(b->shape.get())) smallest = math::min(smallest, sphere->radius);
+		const bool valid  = maxOverlap > 0 && maxOverlap <= 2;
+		law.overlapBound  = maxOverlap;
+		law.overlapAlarm  = valid ? maxOverlap * smallest : std::numeric_limits<Real>::infinity();
+		return; // this step's reports used the old bound
+	}
+	if (report.count == 0) return;
+	nOverlaps += report.count;
+	largestOverlap = math::max(largestOverlap, report.largest);
+	if (overlapWarned) return;
+	overlapWarned = true;
+	// A linear contact given by tc oscillates at omega = pi / tc (setContact); an undamped collision at
+	// speed v0 peaks at the overlap v0 / omega = v0 tc / pi, so tc <= pi maxOverlap r / v0 keeps it below the bound.
+	LOG_WARN("interaction " << report.id1 << "-" << report.id2 << ": overlap " << capillary::format_value(report.overlap) << " m = "
+	                        << capillary::format_value(report.largest) << " times the smaller radius " << capillary::format_value(report.radius)
+	                        << " m, above PendularCheck.maxOverlap = " << maxOverlap << " (impact speed about " << capillary::format_value(report.speed)
+	                        << " m/s); with tc <= " << capillary::format_value(Mathr::PI * maxOverlap * report.radius / report.speed)
+	                        << " s the overlap stays below the bound. Warned once; PendularCheck.nOverlaps counts them");
+}
+
+std::string PendularCheck::checkDt(Body::id_t id1, Body::id_t id2)
+{
+	if (!(scene->dt > dtSafety * criticalDt)) return "";
+	const std::string pair = "interaction " + std::to_string(criticalPair[0]) + "-" + std::to_string(criticalPair[1]);
+	if (adaptDt) {
+		int initialized = 0, finalized = 0, ranks = 1;
+		MPI_Initialized(&initialized);
+		MPI_Finalized(&finalized);
+		if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+		if (ranks > 1) return "PendularCheck.adaptDt = True under MPI with " + std::to_string(ranks) + " ranks: each rank would change its own O.dt; set it False and O.dt from stable_dt()";
+		const Real before = scene->dt;
+		scene->dt         = dtSafety * criticalDt;
+		++dtAdaptations;
+		LOG_WARN("adaptDt: O.dt lowered from " << capillary::format_value(before) << " to " << capillary::format_value(scene->dt) << " s = dtSafety = "
+		                                       << dtSafety << " times the critical time step of " << pair);
+		return "";
+	}
+	if (scene->dt == warnedDt && id1 < 0) return ""; // once per value of O.dt, unless a new pair lowered the limit
+	warnedDt = scene->dt;
+	++dtWarnings;
+	LOG_WARN("O.dt = " << capillary::format_value(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
+	                   << capillary::format_value(criticalDt) << " s, of " << pair
+	                   << ": contacts may gain energy or diverge; yade_capillary.scene.stable_dt() gives a stable time step, PendularCheck.adaptDt lowers O.dt by itself");
+	return "";
 }
 
 void PendularCheck::raiseInStep(Scene* scene, const std::string& message)
@@ -521,8 +595,13 @@ void PendularPhys::buildBridge()
 	sRupture = bridge.rupture;
 	force0   = bridge.force0;
 	viscous.reset();
-	if (eta > 0)
-		viscous = std::make_shared<const capillary::ViscousBridge>(capillary::make_viscous(capillary::NormalViscous(viscousIndex), R1, R2, eta, Vb, dynamicRupture ? gamma : 0, viscousSmin));
+	if (eta > 0) viscous = viscousOf(Vb);
+}
+
+std::shared_ptr<const capillary::ViscousBridge> PendularPhys::viscousOf(Real volume) const
+{
+	return std::make_shared<const capillary::ViscousBridge>(
+	        capillary::make_viscous(capillary::NormalViscous(viscousIndex), R1, R2, eta, volume, dynamicRupture ? gamma : 0, viscousSmin));
 }
 
 void PendularPhys::postLoad(PendularPhys&)
@@ -559,7 +638,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1
 	}
 	const Real                        dt = pairCriticalDt(*phys, *body1, *body2);
 	const std::lock_guard<std::mutex> lock(dtMutex);
-	newCriticalDt = math::min(newCriticalDt, dt);
+	if (dt < newCriticalDt.dt) newCriticalDt = { dt, I->getId1(), I->getId2() };
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::report(const std::string& what, const Interaction& I)
@@ -588,12 +667,12 @@ std::string Ip2_PendularMat_PendularMat_PendularPhys::takeError(Scene* current)
 	return error;
 }
 
-Real Ip2_PendularMat_PendularMat_PendularPhys::takeCriticalDt()
+Ip2_PendularMat_PendularMat_PendularPhys::PairDt Ip2_PendularMat_PendularMat_PendularPhys::takeCriticalDt()
 {
 	const std::lock_guard<std::mutex> lock(dtMutex);
-	const Real                        dt = newCriticalDt;
-	newCriticalDt                        = std::numeric_limits<Real>::infinity();
-	return dt;
+	const PairDt                      taken = newCriticalDt;
+	newCriticalDt                           = { std::numeric_limits<Real>::infinity(), -1, -1 };
+	return taken;
 }
 
 Real Ip2_PendularMat_PendularMat_PendularPhys::criticalDt(Body::id_t id1, Body::id_t id2)
@@ -915,6 +994,7 @@ void Law2_ScGeom_PendularPhys_Bridge::releasePair(Scene* current, Interaction& I
 		nBridges -= 1;
 		liquidVolume -= phys->Vb;
 		liquidReleased += phys->Vb;
+		zeroEmptyTotals();
 	}
 	phys->active = false; // the interaction goes (or becomes potential) without the law
 	if (!phys->film) return;
@@ -927,6 +1007,41 @@ void Law2_ScGeom_PendularPhys_Bridge::releasePair(Scene* current, Interaction& I
 		else liquidRemoved += share.second;
 	}
 	phys->Vb = 0;
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::zeroEmptyTotals()
+{
+	if (nBridges.get() == 0) liquidVolume.reset();
+}
+
+Law2_ScGeom_PendularPhys_Bridge::OverlapReport Law2_ScGeom_PendularPhys_Bridge::takeOverlaps()
+{
+	const std::lock_guard<std::mutex> lock(overlapMutex);
+	const OverlapReport               report = overlaps;
+	overlaps                                 = OverlapReport {};
+	return report;
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::overlapSeen(Real depth, const Vector3r& normal, const PendularKinematics& k, Real kn)
+{
+	const shared_ptr<Body>& b1 = Body::byId(k.id1, scene);
+	const shared_ptr<Body>& b2 = Body::byId(k.id2, scene);
+	if (heavy(*b1) && heavy(*b2)) return; // e.g. fixed spheres placed overlapping: no collision
+	const Real radius = math::min(radiusOf(b1), radiusOf(b2));
+	if (!(depth > overlapBound * radius)) return;
+	// The normal speed at impact, from the energy of the undamped spring now: v0^2 = v^2 + kn d^2/m.
+	const Real vn    = normal.dot(k.vel1 - k.vel2 - k.shiftVel);
+	const Real speed = math::sqrt(vn * vn + kn * depth * depth / effectiveMass(*b1, *b2));
+	const std::lock_guard<std::mutex> lock(overlapMutex);
+	++overlaps.count;
+	if (depth / radius > overlaps.largest) {
+		overlaps.largest = depth / radius;
+		overlaps.id1     = k.id1;
+		overlaps.id2     = k.id2;
+		overlaps.overlap = depth;
+		overlaps.radius  = radius;
+		overlaps.speed   = speed;
+	}
 }
 
 void Law2_ScGeom_PendularPhys_Bridge::eraseBody(Scene* current, Body::id_t id, bool clumpMembers)

@@ -121,6 +121,8 @@ public:
 	std::shared_ptr<const capillary::ViscousBridge> viscous;
 	void              postLoad(PendularPhys&);
 	void              buildBridge();
+	// The viscous forces (eta > 0) of a bridge of this pair holding `volume` [m^3].
+	std::shared_ptr<const capillary::ViscousBridge> viscousOf(Real volume) const;
 	std::string       modelName() const;
 	std::string       ruptureName() const;
 	std::string       calibrateName() const;
@@ -192,7 +194,11 @@ public:
 	// ("" if none; an error of an earlier step or another scene is dropped), and the smallest
 	// critical time step of the interactions created since the last call (inf if none).
 	std::string takeError(Scene* scene);
-	Real        takeCriticalDt();
+	struct PairDt {
+		Real       dt;
+		Body::id_t id1, id2; // the pair that has it (-1 if none)
+	};
+	PairDt takeCriticalDt();
 	FUNCTOR2D(PendularMat, PendularMat);
 	DECLARE_LOGGER;
 
@@ -208,7 +214,7 @@ private:
 	Scene*      errorScene       = nullptr;
 	long        errorIter        = -1;
 	long        stopAtIterBefore = 0;
-	Real        newCriticalDt    = std::numeric_limits<Real>::infinity();
+	PairDt      newCriticalDt { std::numeric_limits<Real>::infinity(), -1, -1 };
 
 public:
 	// clang-format off
@@ -232,8 +238,19 @@ public:
 };
 REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
 
+class Law2_ScGeom_PendularPhys_Bridge;
+
 class PendularCheck : public GlobalEngine {
 	Real warnedDt = NaN; // O.dt of the last warning
+	// The overlap check's bound as last handed to the laws, and the body count it was computed for
+	// (see Law2_ScGeom_PendularPhys_Bridge::overlapAlarm).
+	Real   alarmBound  = NaN;
+	size_t alarmBodies = 0;
+	bool   overlapWarned = false;
+	// Hands maxOverlap to `law` and takes what its contacts reported (see action()).
+	void checkOverlaps(Law2_ScGeom_PendularPhys_Bridge& law, bool fresh);
+	// The step's dt check: warns, or with adaptDt lowers O.dt; returns an input error ("" if none).
+	std::string checkDt(Body::id_t id1, Body::id_t id2);
 	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of this
 	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp), and the erase and clear
 	// of BodyContainer and InteractionContainer, so that the liquid they remove is accounted for.
@@ -257,9 +274,15 @@ public:
 		"stopped the simulation thread before YADE's wait() looked (which then returns without it). With liquid='film' it also "
 		"forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
 		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms). O.bodies.erase and clear, O.interactions.erase and clear are wrapped to account for the liquid they remove.",
-		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
-		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt); inf before the first."))
-		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-].")),
+		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-], (0, 1]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
+		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt: with the viscous forces of the pair's bridge, in film mode of the largest bridge it can form); inf before the first."))
+		((Vector2i, criticalPair, Vector2i(-1, -1), Attr::readonly, "The two bodies of the interaction that has criticalDt [-]; (-1, -1) before the first."))
+		((long, dtWarnings, 0, Attr::readonly, "Number of time-step warnings given [-]."))
+		((bool, adaptDt, false, , "When O.dt exceeds dtSafety * criticalDt (a new pair, e.g. a viscous bridge of small spheres, has a smaller limit), lower O.dt to dtSafety * criticalDt and log it, instead of only warning [-]. Off by default: YADE users expect O.dt to change only when they change it. Refused under yade.mpy with several ranks (each rank would change its own O.dt)."))
+		((long, dtAdaptations, 0, Attr::readonly, "Number of times adaptDt lowered O.dt [-]."))
+		((Real, maxOverlap, 0.5, , "Warn (once, with the pair, the overlap, the estimated impact speed and a tc that would keep the overlap below this bound) when a contact's overlap exceeds maxOverlap times the smaller radius of the pair [-], (0, 2]. A contact given by tc overlaps about v tc / pi at impact speed v, so fast collisions of small spheres may overlap by more than their radius. Costs one comparison per contact-step. A change takes effect from the step after the next."))
+		((long, nOverlaps, 0, Attr::readonly, "Number of contact-steps whose overlap exceeded maxOverlap times the pair's smaller radius [-] (pairs of two bodies that do not move are not counted)."))
+		((Real, largestOverlap, 0, Attr::readonly, "Largest overlap counted in nOverlaps, divided by the pair's smaller radius [-]; 0 if none.")),
 		/*ctor*/,
 		/*py: pasted after `(void)_classObj` in pyRegisterClass(_scope), _scope being yade.wrapper*/
 		; guardOmega(_scope)
@@ -320,8 +343,28 @@ public:
 	// bridge that the step stretched past rupture and that the law breaks at the next step.
 	// std::invalid_argument (ValueError) naming what does not allow it.
 	void formBridge(Body::id_t id1, Body::id_t id2, Real pastRupture);
+	// liquidVolume is a running sum: with no bridge left its round-off is set to exactly 0.
+	void zeroEmptyTotals();
+
+	// The overlap check (PendularCheck.maxOverlap). apply() compares a contact's overlap with
+	// overlapAlarm, maxOverlap times the smallest sphere radius of the scene (inf: off), which
+	// PendularCheck sets: one comparison per contact-step. The rare contact above it is measured
+	// against its own smaller radius by overlapSeen, out of line.
+	Real overlapAlarm = std::numeric_limits<Real>::infinity();
+	Real overlapBound = 0.5; // maxOverlap [-]
+	struct OverlapReport {
+		long       count   = 0; // contact-steps above the bound
+		Real       largest = 0; // overlap / smaller radius of the largest
+		Body::id_t id1 = -1, id2 = -1;
+		Real       overlap = 0, radius = 0, speed = 0; // of the largest [m], [m], [m/s]
+	};
+	// What the contacts reported since the last call, reset.
+	OverlapReport takeOverlaps();
 
 private:
+	__attribute__((noinline, cold)) void overlapSeen(Real depth, const Vector3r& normal, const PendularKinematics& k, Real kn);
+	std::mutex    overlapMutex;
+	OverlapReport overlaps;
 	// Film mode: what the bridges ask of the films in a step, done by settleFilms. Rare (formation and
 	// rupture only), so one lock for InteractionLoop's threads.
 	struct FilmFormation {
@@ -479,6 +522,7 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 
 	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
 	if (!(phys.kn > 0)) return false;
+	if (__builtin_expect(geom.penetrationDepth > overlapAlarm, 0)) overlapSeen(geom.penetrationDepth, geom.normal, k, phys.kn);
 	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
 	if (phys.wet && !phys.active) {
 		bool film = false;

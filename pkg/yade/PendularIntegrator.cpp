@@ -59,7 +59,8 @@ void PendularIntegrator::findNewton()
 	}
 	if (!newton)
 		PendularCheck::raiseInStep(scene, "PendularIntegrator: no NewtonIntegrator before it in O.engines (it does that engine's step and "
-		                                  "reads its parameters); yade_capillary.scene.engines places them");
+		                                  "reads its parameters); yade_capillary.scene.engines places them. Under yade.mpy, which places its "
+		                                  "engines next to NewtonIntegrator, use engines(integrator=\"newton\") or scene.newton_only(O.engines)");
 	if (!newton->dead)
 		PendularCheck::raiseInStep(scene, "PendularIntegrator: the NewtonIntegrator before it in O.engines has dead=False, so every body "
 		                                  "would be moved twice per step; set its dead=True (yade_capillary.scene.engines does), or remove "

@@ -1,4 +1,7 @@
 """Engine lists and the stable time step for the yade-capillary functors (import inside yade only)."""
+import os
+import sys
+
 from yade import O
 from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
                           Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
@@ -28,7 +31,7 @@ def interaction_loop(loop="fused", detection_factor=1.0, law_label="capillaryLaw
     return PendularLoop(*functors, label="interactionLoop") if loop == "fused" else InteractionLoop(*functors, label="interactionLoop")
 
 
-def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused", integrator="pendular"):
+def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused", integrator="auto"):
     """Return the usual engine list with the capillary law.
 
     gravity [m/s^2], damping: NewtonIntegrator's numerical damping [-] (0 for physical runs),
@@ -43,13 +46,16 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     comparisons). With a PendularLoop the forces are reset by PendularForceResetter (a ForceResetter
     whose threads zero the bodies they handed forces over for), else by ForceResetter.
     The collider is labelled ``collider`` (yade.mpy looks it up by that label).
-    integrator: "pendular" (default): NewtonIntegrator(dead=True) holds gravity and damping and
+    integrator: "pendular": NewtonIntegrator(dead=True) holds gravity and damping and
     PendularIntegrator, after it, does its step (the same numbers, faster; NewtonIntegrator's own
     step for scenes it does not cover, see its docstring); "newton": YADE's NewtonIntegrator alone
-    (needed for yade.mpy, which places its engines next to NewtonIntegrator).
+    (needed for yade.mpy, which places its engines next to NewtonIntegrator); "auto" (default):
+    "newton" under MPI (yade.mpy imported, or mpiexec with more than one process), else "pendular".
     """
-    if integrator not in ("pendular", "newton"):
-        raise ValueError("integrator: %r is not one of 'pendular', 'newton'" % (integrator,))
+    if integrator not in ("auto", "pendular", "newton"):
+        raise ValueError("integrator: %r is not one of 'auto', 'pendular', 'newton'" % (integrator,))
+    if integrator == "auto":
+        integrator = "newton" if under_mpi() else "pendular"
     if isinstance(loop, str):
         loop = interaction_loop(loop, detection_factor, law_label)
     newton = NewtonIntegrator(gravity=gravity, damping=damping, dead=integrator == "pendular")
@@ -62,6 +68,20 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
         *extra,
         newton,
     ] + ([PendularIntegrator()] if integrator == "pendular" else [])
+
+
+def under_mpi():
+    """True under yade.mpy (imported) or under mpiexec with more than one process (Open MPI's or a
+    PMI launcher's size variable), where PendularIntegrator cannot be used."""
+    if "yade.mpy" in sys.modules:
+        return True
+    for name in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"):
+        try:
+            if int(os.environ.get(name, "1")) > 1:
+                return True
+        except ValueError:  # not a count: not a launcher's
+            pass
+    return False
 
 
 def newton_only(engine_list):

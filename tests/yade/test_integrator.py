@@ -22,6 +22,8 @@
 #   unchanged) must have the step handed over from that step on, with the same results as
 #   NewtonIntegrator alone.
 # - Engine lists that would move the bodies twice or not at all raise a ValueError naming the cause.
+import os
+
 from yade import O
 from yade.wrapper import NewtonIntegrator, PyRunner
 
@@ -138,6 +140,17 @@ newton = next(e for e in O.engines if isinstance(e, NewtonIntegrator))
 newton.dead = False
 ck.raises(ValueError, O.step, ["PendularIntegrator", "dead=False", "twice"], "NewtonIntegrator alive before PendularIntegrator")
 O.engines = [e for e in O.engines if not isinstance(e, NewtonIntegrator)]
-ck.raises(ValueError, O.step, ["PendularIntegrator", "no NewtonIntegrator"], "no NewtonIntegrator before PendularIntegrator")
-ck.raises(ValueError, lambda: scene.engines(integrator="verlet"), ["integrator", "verlet", "pendular", "newton"], "unknown integrator")
+ck.raises(ValueError, O.step, ["PendularIntegrator", "no NewtonIntegrator", 'integrator="newton"'],
+          "no NewtonIntegrator before PendularIntegrator: the message names the yade.mpy fix")
+ck.raises(ValueError, lambda: scene.engines(integrator="verlet"), ["integrator", "verlet", "auto", "pendular", "newton"], "unknown integrator")
+
+# integrator="auto" (the default): NewtonIntegrator alone under mpiexec with several processes.
+has_pendular = lambda engines: any(e.__class__.__name__ == "PendularIntegrator" for e in engines)  # noqa: E731
+ck.true(has_pendular(scene.engines()), "engines() outside MPI: PendularIntegrator")
+os.environ["OMPI_COMM_WORLD_SIZE"] = "2"
+ck.true(not has_pendular(scene.engines()) and all(not e.dead for e in scene.engines() if isinstance(e, NewtonIntegrator)),
+        "engines() with OMPI_COMM_WORLD_SIZE = 2: NewtonIntegrator alone, alive")
+os.environ["OMPI_COMM_WORLD_SIZE"] = "many"
+ck.true(has_pendular(scene.engines()), "engines() with a size that is not a count: PendularIntegrator")
+del os.environ["OMPI_COMM_WORLD_SIZE"]
 ck.finish()
