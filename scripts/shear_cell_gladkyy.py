@@ -1,10 +1,10 @@
 # Gladkyy's cell at his scale (the Luding/Roy proportions enlarged 2.2 times: about 168 000 flowing
 # spheres, configuration gladkyy_size), run in segments of at most BUDGET_MIN minutes of wall time
 # (default 110), each continuing the compact state of the last one (shearcell.save_state, about
-# 19 MB, committed with the torques so that any clone can continue the run). Commit a state once per
-# segment, at its end: the 20-min saves are insurance against a crash within the session, and a session
-# whose commits change a state at every save exceeds the 256 MiB of diffs a submission may carry (one did:
-# 14 states, and none of its work landed).
+# 19 MB). A state may be committed while its run lasts, so that another clone can continue it: once per
+# segment, at its end (the 20-min saves are insurance against a crash; a commit per save multiplies the
+# repository's size). When the run ends, remove prepared.npz, the states and CASE/interim/ from the
+# repository: the summaries (fits.json, profiles.csv, contacts_vs_a.csv, torque.csv, PNGs) stay.
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_gladkyy.py CASE [BUDGET_MIN [STOP]]   (two cases side by side, one core each)
 #   CASE: prepare (fill and settle the dry cell once) | dry | wet13.6nl | wet74.2nl | wet13.6nl_<model>
 #         | analyse (the fits of every complete case again, cellanalysis.analyse_reduced at Gladkyy's 13 heights)
