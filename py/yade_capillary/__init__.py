@@ -14,6 +14,8 @@ Modules:
     fits     -- erf shear-band fit and tau = mu p + c fit with standard errors
     fuzz     -- randomised stress test of the kernels (every model, wide and absurd inputs)
     stress   -- wet scenes, time-step limit and invariant checks for the in-YADE stress tests (inside yade only)
+    reference -- the class reference docs/reference.md, from the build's docstrings (inside yade only)
+    random_scenes -- random wet scenes as a new user builds them, for the stability campaign (inside yade only)
 
 The compiled module is yade_capillary._kernels (re-exported by kernels); the build assembles the
 package in build/python, so PYTHONPATH=build/python gives all of it in plain python3.
