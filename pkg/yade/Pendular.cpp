@@ -1022,22 +1022,28 @@ Law2_ScGeom_PendularPhys_Bridge::OverlapReport Law2_ScGeom_PendularPhys_Bridge::
 	return report;
 }
 
-void Law2_ScGeom_PendularPhys_Bridge::overlapSeen(Real depth, const Vector3r& normal, const PendularKinematics& k, Real kn)
+void Law2_ScGeom_PendularPhys_Bridge::overlapSeen(Real depth, Body::id_t id1, Body::id_t id2, Real kn)
 {
-	const shared_ptr<Body>& b1 = Body::byId(k.id1, scene);
-	const shared_ptr<Body>& b2 = Body::byId(k.id2, scene);
+	const shared_ptr<Body>& b1 = Body::byId(id1, scene);
+	const shared_ptr<Body>& b2 = Body::byId(id2, scene);
 	if (heavy(*b1) && heavy(*b2)) return; // e.g. fixed spheres placed overlapping: no collision
 	const Real radius = math::min(radiusOf(b1), radiusOf(b2));
 	if (!(depth > overlapBound * radius)) return;
 	// The normal speed at impact, from the energy of the undamped spring now: v0^2 = v^2 + kn d^2/m.
-	const Real vn    = normal.dot(k.vel1 - k.vel2 - k.shiftVel);
+	const shared_ptr<Interaction> I      = scene->interactions->find(id1, id2);
+	const bool                    shift  = scene->isPeriodic && I;
+	const Vector3r                pos2   = b2->state->pos + (shift ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero());
+	const Vector3r                vel2   = b2->state->vel + (shift ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero());
+	const bool                    sphere = dynamic_cast<const Sphere*>(b2->shape.get());
+	// Two spheres: along the centres; a wall or facet: the sphere's velocity (a bound on the normal part).
+	const Real vn = sphere ? (pos2 - b1->state->pos).normalized().dot(b1->state->vel - vel2) : (b1->state->vel - vel2).norm();
 	const Real speed = math::sqrt(vn * vn + kn * depth * depth / effectiveMass(*b1, *b2));
 	const std::lock_guard<std::mutex> lock(overlapMutex);
 	++overlaps.count;
 	if (depth / radius > overlaps.largest) {
 		overlaps.largest = depth / radius;
-		overlaps.id1     = k.id1;
-		overlaps.id2     = k.id2;
+		overlaps.id1     = id1;
+		overlaps.id2     = id2;
 		overlaps.overlap = depth;
 		overlaps.radius  = radius;
 		overlaps.speed   = speed;

@@ -362,7 +362,9 @@ public:
 	OverlapReport takeOverlaps();
 
 private:
-	__attribute__((noinline, cold)) void overlapSeen(Real depth, const Vector3r& normal, const PendularKinematics& k, Real kn);
+	// Scalars only: a reference to the kinematics or the geometry would make the hot path keep them in
+	// memory at every bridge-step; the rare call finds the rest from the bodies and the interaction.
+	__attribute__((noinline, cold)) void overlapSeen(Real depth, Body::id_t id1, Body::id_t id2, Real kn);
 	std::mutex    overlapMutex;
 	OverlapReport overlaps;
 	// Film mode: what the bridges ask of the films in a step, done by settleFilms. Rare (formation and
@@ -522,7 +524,7 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 
 	// kn = 0 only if the Ip2 rejected the contact parameters: reset, so that its error comes again.
 	if (!(phys.kn > 0)) return false;
-	if (__builtin_expect(geom.penetrationDepth > overlapAlarm, 0)) overlapSeen(geom.penetrationDepth, geom.normal, k, phys.kn);
+	if (__builtin_expect(geom.penetrationDepth > overlapAlarm, 0)) overlapSeen(geom.penetrationDepth, k.id1, k.id2, phys.kn);
 	// In contact. The bridge forms at the first contact (Gladkyy2014 section 2).
 	if (phys.wet && !phys.active) {
 		bool film = false;
