@@ -7,6 +7,8 @@
 #                the headers from instead of Debian's source package.
 #   BUILD_DIR    build directory (default: <repo>/build)
 #   JOBS         parallel compile jobs (default: number of cores)
+#   BUILD_LOCK   a lock file: the build waits for it (flock), so that builds of several people
+#                sharing one build directory never overlap
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD_DIR=${BUILD_DIR:-$ROOT/build}
@@ -39,5 +41,6 @@ if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]]; then
   cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DYADE_HEADERS="$BUILD_DIR/yade-headers" >/dev/null
 fi
 say "building (${JOBS} jobs)"
-cmake --build "$BUILD_DIR" -j "$JOBS"
+if [[ -n ${BUILD_LOCK:-} ]]; then flock "$BUILD_LOCK" cmake --build "$BUILD_DIR" -j "$JOBS"
+else cmake --build "$BUILD_DIR" -j "$JOBS"; fi
 say "ready: $BUILD_DIR/yade-capillary"
