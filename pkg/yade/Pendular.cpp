@@ -1034,9 +1034,9 @@ void Law2_ScGeom_PendularPhys_Bridge::overlapSeen(Real depth, Body::id_t id1, Bo
 	const bool                    shift  = scene->isPeriodic && I;
 	const Vector3r                pos2   = b2->state->pos + (shift ? scene->cell->intrShiftPos(I->cellDist) : Vector3r::Zero());
 	const Vector3r                vel2   = b2->state->vel + (shift ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero());
-	const bool                    sphere = dynamic_cast<const Sphere*>(b2->shape.get());
-	// Two spheres: along the centres; a wall or facet: the sphere's velocity (a bound on the normal part).
-	const Real vn = sphere ? (pos2 - b1->state->pos).normalized().dot(b1->state->vel - vel2) : (b1->state->vel - vel2).norm();
+	const bool spheres = dynamic_cast<const Sphere*>(b1->shape.get()) && dynamic_cast<const Sphere*>(b2->shape.get());
+	// Two spheres: along the centres; with a wall or facet: the relative speed (a bound on its normal part).
+	const Real vn = spheres ? (pos2 - b1->state->pos).normalized().dot(b1->state->vel - vel2) : (b1->state->vel - vel2).norm();
 	const Real speed = math::sqrt(vn * vn + kn * depth * depth / effectiveMass(*b1, *b2));
 	const std::lock_guard<std::mutex> lock(overlapMutex);
 	++overlaps.count;
