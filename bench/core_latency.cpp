@@ -3,13 +3,13 @@
 // vCPUs of an AMD EPYC) it tells the machine's two modes apart: 55-110 ns (probably both vCPUs sharing
 // a cache) and 300-420 ns (probably not: every line that one core wrote and the other reads then crosses
 // between chips, and a two-thread step of the ci shear cell ran at 0.8-1.1x of one thread, 1.3-1.5x
-// since the gathering streams the bodies that the other thread reads, 2026-11-27). The
+// once the gathering streamed the bodies that the other thread reads). The
 // benchmarks print it next to every timed run so that their ratios can be read with the mode they
 // were measured in. Not a test.
 // With --parallel, the machine's parallel speed instead: the time per record of one thread updating its
 // own records alone, over that of each of two threads doing as much at once (1: two cores' worth; 0.5:
-// each thread at half speed, as if the two vCPUs shared one core). On this VM, sampled every 1-2 s for 7
-// minutes (2026-11-27), it was 0.5 in 27 of 300 samples, at any round trip.
+// each thread at half speed, as if the two vCPUs shared one core). On one two-vCPU VM, sampled every 1-2 s for 7
+// minutes, it was 0.5 in 27 of 300 samples, at any round trip.
 #include <algorithm>
 #include <atomic>
 #include <chrono>

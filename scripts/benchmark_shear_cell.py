@@ -10,10 +10,10 @@
 #   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
 #   cache: file of the prepared cell, made if missing ('' or none: a temporary file, removed at exit); pairs: 10 by default, 0 for none.
 # Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
-# this VM has a mode in which two threads gain far less (round trip 300-420 ns instead of 55-110), and
+# a two-vCPU VM may have a mode in which two threads gain far less (round trip 300-420 ns instead of 55-110), and
 # a ratio of thread counts holds only between runs of the same mode; and with the machine's parallel
 # speed just before it (core_latency --parallel: 1 when two threads get two cores' worth of private
-# work, 0.5 when each runs at half speed, which this VM also does at times, at any round trip).
+# work, 0.5 when each runs at half speed, which such a VM also does at times, at any round trip).
 import atexit
 import os
 import shutil
@@ -51,7 +51,7 @@ for key in results[threads[0]][2]["phases"]:
 for k, name in enumerate(NAMES):
     print("  speed-up from %d threads, %-32s %.2f" % (threads[-1], name, results[threads[-1]][k]["particle_steps_per_s"] / results[1][k]["particle_steps_per_s"]))
 if pairs > 0 and threads[-1] >= 2:
-    # Classed by what was measured just before the two-thread run: the round trip (the slow mode of this VM
+    # Classed by what was measured just before the two-thread run: the round trip (the slow mode of such a VM
     # starts at about 250 ns) and the parallel speed (below 0.9: a stretch without two cores' worth).
     slow_mode, full_speed = 250, 0.9
     runs = benchmark.thread_pairs(pairs, steps, config=config, cache=cache)

@@ -69,7 +69,7 @@ prepared = os.path.join(root, "prepared.npz")
 if case == "prepare":
     os.makedirs(root, exist_ok=True)
     # No O.save: its gzip archive of 2e5 bodies takes longer than the settling's last hour. The settling
-    # itself is saved every 20 min to settling.npz (commit it when a session ends before the cell is settled).
+    # itself is saved every 20 min to settling.npz (continued from it when the settling is stopped before its end).
     settling = os.path.join(root, "settling.npz")
     info = shearcell.prepare("gladkyy_size", "dry", None, checkpoint=settling)
     shearcell.save_state(prepared, info)
@@ -81,7 +81,7 @@ until = shearcell.snapshot_steps(shearcell.CONFIGS["gladkyy_size"], shearcell.CO
 out = shearcell.run_segment(prepared, os.path.join("results", "shear_cell", "gladkyy_size", case), case=case, budget_s=60 * budget_min,
                             until_step=until, keep=os.path.join(root, case))
 print("segment: %(done_steps)d of %(steps)d steps done, t = %(t_s).3f s, %(particle_steps_per_s).3g particle-steps/s, complete %(complete)s" % out)
-if out["complete"]:  # fits from the reduced snapshots (committed), whichever sessions took them
+if out["complete"]:  # fits from the reduced snapshots (committed), whichever segments took them
     fit = cellanalysis.analyse_reduced(os.path.join(root, case), heights=cellanalysis.GLADKYY_HEIGHTS)
     print(json.dumps({k: fit[k] for k in ("mu", "mu_err", "c_Pa", "c_err_Pa", "Rc_m", "W_m", "torque_Nm", "band_points")}, indent=1, default=float))
 sys.exit(0)

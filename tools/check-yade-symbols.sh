@@ -9,7 +9,7 @@ missing=$(nm -D --undefined-only "$plugin" | awk '{print $NF}' | grep '4yade' | 
 if [[ -n "$missing" ]]; then
   echo "ERROR: $(basename "$plugin") needs yade:: symbols that the YADE in $libdir does not define:" >&2
   echo "$missing" | c++filt | sed 's/^/  /' >&2
-  echo "The YADE headers used for the build do not match the installed YADE (see README)." >&2
+  echo "The YADE headers used for the build do not match the installed YADE (see docs/design.md)." >&2
   rm -f "$plugin"; exit 1
 fi
 echo "all $(nm -D --undefined-only "$plugin" | grep -c '4yade') yade:: symbols of $(basename "$plugin") found in $libdir"

@@ -25,7 +25,7 @@ inline double harmonic_mean_radius(double r1, double r2) { return 2 * r1 * r2 / 
 // small-volume limit (a sphere-plane bridge tends to F(0) = 2 pi R1 gamma (cos theta1 + cos theta2));
 // against the exact solver for glass-steel (15/45 deg) and POM-PVC (40/50 deg) it is closer than the
 // cosine of the mean angle, which over-predicts F(0) by 3.5-4.9 % for glass-steel
-// (scripts/mixed_angles.py, README). Equal angles are returned unchanged.
+// (scripts/mixed_angles.py, docs/models.md). Equal angles are returned unchanged.
 inline double equivalent_angle(double theta1, double theta2)
 {
 	return theta1 == theta2 ? theta1 : std::acos((std::cos(theta1) + std::cos(theta2)) / 2);

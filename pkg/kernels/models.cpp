@@ -299,7 +299,7 @@ double rupture_distance(Rupture rule, const Pair& p)
 {
 	switch (rule) {
 		// lian, willett: printed for equal angles; unequal ones enter by their mean (the exact rupture
-		// of unequal angles is shorter still, README "Mixed contact angles").
+		// of unequal angles is shorter still, docs/models.md "Unequal contact angles").
 		case Rupture::lian: return (1 + p.theta_mean / 2) * std::cbrt(p.volume); // Richefeu2008 eq. (6)
 		case Rupture::willett: {
 			const double vs = std::cbrt(p.vstar);

@@ -19,7 +19,7 @@
 // Extrapolated) and returns a Bridge: the model as a variant index plus its invariants.
 // bridge_force() is the cheap per-step call. Adding a model: one type here, one line in
 // CAPILLARY_MODELS, one reference file in tests/data/models/, one literal-formula test in
-// tests/kernels/test_models.cpp, one README row.
+// tests/kernels/test_models.cpp, one row in docs/models.md (see docs/CONTRIBUTING.md).
 #pragma once
 
 #include "conventions.hpp"

@@ -94,7 +94,7 @@ double normal_viscous_force(NormalViscous law, double S, double v_n, double R1, 
 // Branch jump: eq. (28) and (29) differ at S_eff = 0.1 r* in c_r only, by 3.3 % (c_r/(6 pi eta r*)
 // = 0.05441 from (28), 0.05627 from (29)); c_t is continuous. The paper's jump is kept (a
 // blend would change a 3 % step of a coefficient that is itself a fit; the curves cross at
-// S_eff = 0.0984 r*; see README).
+// S_eff = 0.0984 r*; see docs/models.md, "Viscous forces").
 // Deviation: c_t is floored at 0. It is positive for S_eff < r* exp(15/8 0.9588) = 6.03 r* and
 // would turn negative (a driving force) beyond, outside Goldman's range.
 // Dissipation: each part opposes its own velocity (c_t, c_r >= 0). Because c_t != c_r, the pair

@@ -119,7 +119,7 @@ namespace pendular {
 	}
 	// stored = value with streaming stores, which bypass the caches: for data that another core reads after
 	// this step's barrier. A plain store to a line that the other core read in the last step waits for that
-	// copy to be invalidated: about 50 ns per line when the two vCPUs of this machine are far apart (round
+	// copy to be invalidated: about 50 ns per line when the two vCPUs of a VM are far apart (round
 	// trip above 300 ns), 10 when near. The other core then reads the line from memory. The writer calls
 	// streamFence before the barrier (streaming stores are not ordered with the others). A plain copy where
 	// there are no SSE2 streaming stores.

@@ -266,7 +266,7 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 	forces.sync();
 	// The container's summed entries themselves (what getForce and getTorque return once synced), without two
 	// calls into libyade per body: this pass took 47-51 µs per step of the ci cell on one thread with them, 40-46
-	// without (8 alternating runs of 1000 steps, 2026-11-27). None if the container does not cover every body
+	// without (8 alternating runs of 1000 steps, docs/performance.md). None if the container does not cover every body
 	// (getForce's zero beyond its entries): then the calls.
 	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
 	Real flag  = 0;

@@ -205,7 +205,7 @@ void PendularLoop::gather(int threads)
 	// The class index of the last shape's class, by its dynamic type (typeid reads the vtable that the object
 	// points to): Shape::getClassIndex is a virtual call into libyade per body otherwise, about 4 ns each. The
 	// gathering of the ci cell (with the other per-step work before the pass) took 47-53 µs per step on one
-	// thread with it, 41-47 without (8 alternating runs of 1000 steps, 2026-11-27). type_info objects are
+	// thread with it, 41-47 without (8 alternating runs of 1000 steps, docs/performance.md). type_info objects are
 	// static: an address seen once is never another class's.
 	const std::type_info*     lastShapeType  = nullptr;
 	int                       lastShapeIndex = -1;
@@ -729,7 +729,7 @@ void PendularLoop::shareWork(int threads)
 	// last one's): its share of the estimated cost is inversely proportional to it. With the estimate alone,
 	// the second thread of the ci cell finished its entries 4-5 µs per step later than the first on average
 	// (its bodies all move and have more bridges than the first part's fixed floor; with the paces -0.3 to
-	// -0.9 µs), and in this machine's slow mode one core runs its part 10-15 % slower than the other for seconds.
+	// -0.9 µs), and in a two-vCPU VM's slow mode one core runs its part 10-15 % slower than the other for seconds.
 	if (long(threadPace.size()) != threads) threadPace.assign(size_t(threads), 1);
 	if (paceSteps >= minPaceSteps && long(partCost.size()) == threads && long(paceTime.size()) == threads) {
 		std::vector<double> perCost(static_cast<size_t>(threads));

@@ -192,8 +192,8 @@ def timed_steps(n):
     wall time [s] from O.run to the end of the n-th step, stamped by the END_STAMP PyRunner in that step
     (firstIterRun), which must be the last engine (end_stamp). Not the time at which the wait returns: O.wait
     polls every 40 ms (O.run(1, True) without engines took 40.3 ms here), which added 0-40 ms at random to every
-    timed run. Not a poll of O.running every millisecond either (the benchmarks until the nineteenth session):
-    on this two-vCPU machine its 1000 wake-ups per second share the cores with the two threads of a two-thread
+    timed run. Not a poll of O.running every millisecond either:
+    on a two-vCPU machine its 1000 wake-ups per second share the cores with the two threads of a two-thread
     run (ci cell, 1000-step runs alternated in one process, both stamped: a two-thread step 5 %, 3.4 % and 1 %
     slower with the 1 ms poll than with 50 ms polls, medians of 10, 12 and 24 runs). O.run, not O.step() in a
     loop: the steps run in YADE's simulation thread, as in the runs of users' scripts."""
@@ -282,7 +282,7 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
     in one run: particle-steps per second of each (fastest of `repeats` interleaved runs; threads
     threads: the numbers of OpenMP threads to measure, interleaved in the same process (every engine's
-    ompThreads; yade must be started with -j at least the largest): this machine's speed drifts by
+    ompThreads; yade must be started with -j at least the largest): a shared machine's speed drifts by
     up to 3x within minutes, so thread counts are compared within one run. cache: file of the
     prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
     fused, ours fused with parallelBodies = 20000 in PendularLoop and PendularIntegrator, ours fused
@@ -408,8 +408,7 @@ def core_round_trip():
     """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
     None if it is not built. On this project's two-vCPU VM it is 55-110 ns in one mode and 300-420 ns in
     the other (probably the vCPUs sharing a cache or not); in the second a step of the ci cell on two threads
-    ran at 0.8-1.1x of one thread (1.3-1.5x since the gathering streams the bodies that the other thread reads,
-    2026-11-27), so a ratio of thread counts means something only with the round trips of its runs."""
+    ran at 0.8-1.1x of one thread (1.3-1.5x once the gathering streamed the bodies that the other thread reads), so a ratio of thread counts means something only with the round trips of its runs."""
     return _core_latency()
 
 

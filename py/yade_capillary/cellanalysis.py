@@ -227,7 +227,7 @@ def reduce_snapshot(snap_path, cfg, out_path):
     the bins' range) and the torque balance of the cylinders closure_radii(cfg) counted contact by
     contact (closure_walls: walls_inside by contact point and by centre, closure_crossing:
     crossing_torque; snapshots with the wall torques only). What analyse_reduced averages, for runs
-    whose snapshots are taken in several sessions (a run in segments) and do not outlive them."""
+    whose snapshots are taken in several segments and do not outlive them."""
     d = dict(np.load(snap_path))
     grid = analysis_grid(cfg)
     rho, j = cg.density_and_momentum(grid, d["x"], d["v"], d["m"])

@@ -28,7 +28,7 @@ CI = dict(VALIDATION, Ro=0.0495, Ri=0.0066, Rs=0.0383, H=0.018, period=10.0, set
 # The validation cell for a short time: measures the speed and projects the cost of the full run.
 VALIDATION_PROBE = dict(VALIDATION, settle_s=0.2, run_s=0.2, snapshots=4, snapshot_dt_s=0.02)
 # The validation cell for the first 2 s of rotation (of Gladkyy's 5 s), averaged over the last 1 s:
-# what one 3-hour session on 2 cores allows for all three cases (about 1 h per case on one core).
+# what 3 hours on 2 cores allow for all three cases (about 1 h per case on one core).
 # It is prepared exactly like `validation`, so run(..., config="validation_2s") accepts a cell
 # prepared for either, and run() saves final.yade.gz to continue from.
 VALIDATION_2S = dict(VALIDATION, run_s=2.0, snapshots=10, snapshot_dt_s=0.1)
@@ -374,7 +374,7 @@ def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.
     `save_every_s` and at the end. Torques are appended to keep/torque.csv; snapshots go to outdir as
     in run(), each one also reduced to its CG fields in keep/cg_NNN.npz (cellanalysis.reduce_snapshot;
     cellanalysis.analyse_reduced(keep) then fits the run when its snapshots were taken in several
-    sessions); when the run is complete, outdir and keep get run.json and outdir a copy of torque.csv.
+    segments); when the run is complete, outdir and keep get run.json and outdir a copy of torque.csv.
     keep: the directory of what the next segment continues from (default outdir).
     Returns {"complete": bool, "done_steps", "steps", "t_s", "particle_steps_per_s"} of this segment."""
     import time

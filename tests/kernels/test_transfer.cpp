@@ -55,7 +55,7 @@ TEST(Transfer, CloseToTheExactSplitForSmallAngles)
 	// theta = 10 deg, a sphere 1.5 times the other: the exact shares at the rupture gap are 0.570,
 	// 0.633, 0.721 at V* = 0.001, 0.01, 0.1 (solver); the parabola gives 0.607, 0.612, 0.616: within
 	// 0.11 of the exact share, with the larger sphere keeping more. At 40 deg the parabola departs
-	// further (0.53-0.58 against 0.66-0.79, README) and is not checked here.
+	// further (0.53-0.58 against 0.66-0.79, docs/models.md) and is not checked here.
 	const double R2 = 1e-3, R1 = 1.5e-3, Rh = 2 * R1 * R2 / (R1 + R2), theta = 10 * pi / 180;
 	for (double vstar : { 1e-3, 1e-2, 0.1 }) {
 		const yl::Bridge   b(R1, R2, vstar * Rh * Rh * Rh, theta);

@@ -17,7 +17,7 @@
 # naming the pair. A bridge saved
 # past its rupture distance is restored only within the last step's stretch (see below).
 # Settling with a checkpoint (prepare(..., checkpoint=...), how the Gladkyy-size cell settles across
-# sessions): a short settling (0.03 s, 1111 steps, the bottom layer reaches the floor) saved after
+# segments): a short settling (0.03 s, 1111 steps, the bottom layer reaches the floor) saved after
 # every 500-step chunk, then continued from its last checkpoint (step 1000): the positions and
 # velocities at the end within 1e-12 R and 1e-12 of the largest speed of the uninterrupted settling
 # (round-off, as above); a checkpoint of another case raises ValueError naming the file.

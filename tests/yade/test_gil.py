@@ -1,7 +1,7 @@
 # The simulation thread must not need Python's GIL at every step. YADE's O.reset() (and O.load) hold the
 # GIL while they wait for the step in progress to end; PendularIntegrator read its NewtonIntegrator's
 # parameters and wrote the collider's flag through Python at every step, so such a step could wait for the
-# GIL forever: test_film hung there once (2026-11-26, after O.pause(); O.wait(); O.reset()). Now the
+# GIL forever: test_film hung there once (after O.pause(); O.wait(); O.reset()). Now the
 # parameters are read before O.run and after a NewtonIntegrator attribute is set (PendularIntegrator.refresh,
 # objects.guard), and the flag is written into the object directly.
 # - While the main thread holds the GIL in one long C call (a sum over a range: the GIL is handed over
