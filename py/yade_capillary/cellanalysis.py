@@ -111,7 +111,7 @@ def _write_profiles(rundir, grid, rho, f, cfg):
     header = "r_m,z_m,rho_kg_m3,omega_over_Omega,gamma_dot_1_s,p_Pa,tau_Pa,in_band"
     np.savetxt(os.path.join(rundir, "profiles.csv"),
                np.stack([grid.R.ravel(), grid.Z.ravel(), rho.ravel(), f["ratio"].ravel(), f["gdot"].ravel(), f["p"].ravel(), f["tau"].ravel(),
-                         f["band"].ravel()], axis=1), delimiter=",", header=header, comments="")
+                         f["band"].ravel()], axis=1), delimiter=",", header=header, comments="", fmt="%.10g")  # 10 digits: under 2 MB at Gladkyy's size
     _plots(rundir, grid, f["ratio"], f["bulk"], f["band_fits"], f["p"], f["tau"], f["band"], f["yield"], cfg)
 
 
