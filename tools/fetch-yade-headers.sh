@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Put the YADE headers needed to compile the plugin (core/ lib/ pkg/common/ pkg/dem/) into DEST.
 # Sources, in order: $YADE_SOURCE (a tarball or a source tree of the user's choice); Debian's
-# yade source package fetched with apt from the Debian mirror(s) this machine's apt is configured
+# yade source package fetched with apt from the Debian mirror(s) the local apt is configured
 # with (checksum verified); ../shared/cache as an offline fallback. Prints which source was used.
 # Touches no system file: apt runs with a private source list, list directory and cache.
 set -euo pipefail
@@ -39,7 +39,7 @@ if [[ -n "${YADE_SOURCE:-}" ]]; then
   exit 0
 fi
 
-# The Debian mirror(s) of this machine, as its apt configuration names them (sources.list, .list and
+# The Debian mirror(s) that the local apt configuration names (sources.list, .list and
 # deb822 .sources files alike; `apt-get indextargets` reads them all): the repositories whose Release
 # file is labelled Debian, and, where no Release file is known yet (no `apt-get update` so far),
 # those configured for this release's own suite. Security and third-party repositories are left out.

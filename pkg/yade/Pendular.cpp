@@ -176,6 +176,20 @@ namespace {
 		return 2 / w0 * (math::sqrt(1 + z * z) - z);
 	}
 	bool heavy(const Body& b) { return !b.isDynamic() || !(b.state->mass > 0); }
+	// Ranks of MPI_COMM_WORLD (1 without MPI, or before MPI_Init or after MPI_Finalize), and this rank.
+	int mpiRanks(int* rank = nullptr)
+	{
+		int initialized = 0, finalized = 0, ranks = 1;
+		MPI_Initialized(&initialized);
+		MPI_Finalized(&finalized);
+		if (initialized && !finalized) {
+			MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+			if (rank) MPI_Comm_rank(MPI_COMM_WORLD, rank);
+		}
+		return ranks;
+	}
+	// PendularCheck.maxOverlap's range.
+	bool validOverlapBound(Real maxOverlap) { return maxOverlap > 0 && maxOverlap <= 2; }
 	// Mass of the tangential motion of the contact point: 1/m_t = sum over the dynamic bodies of
 	// 1/m + r^2/I (sliding plus rolling; r the sphere radius, I the smallest principal inertia);
 	// 2/7 m for a solid sphere against a wall.
@@ -232,7 +246,7 @@ void PendularCheck::action()
 	bool        loopSeen = false;
 	// A new bound (or a new engine after O.load): the step's reports were made with the old one.
 	const bool fresh = !(alarmBound == maxOverlap) || alarmBodies != scene->bodies->size();
-	Body::id_t newId1 = -1, newId2 = -1; // the pair of a new smallest critical time step
+	bool newPair = false; // a pair of a new smallest critical time step
 	for (const auto& engine : scene->engines) {
 		if (engine.get() == this && !loopSeen)
 			message = "PendularCheck must come after the interaction loop in O.engines (it settles the liquid of the step's bridges and raises "
@@ -257,8 +271,7 @@ void PendularCheck::action()
 			if (taken.dt < criticalDt) {
 				criticalDt   = taken.dt;
 				criticalPair = Vector2i(taken.id1, taken.id2);
-				newId1       = taken.id1;
-				newId2       = taken.id2;
+				newPair      = true;
 			}
 			const std::string problem = ip2->takeError(scene);
 			if (message.empty()) message = problem;
@@ -269,11 +282,11 @@ void PendularCheck::action()
 		alarmBodies = scene->bodies->size();
 	}
 	// Checked after the films are settled, so that a bad value loses no liquid of this step.
-	if (message.empty() && !(maxOverlap > 0 && maxOverlap <= 2))
+	if (message.empty() && !validOverlapBound(maxOverlap))
 		message = "PendularCheck.maxOverlap = " + capillary::format_value(maxOverlap) + "; allowed: (0, 2] (times the smaller radius of a pair)";
 	if (message.empty() && !(dtSafety > 0 && dtSafety <= 1))
 		message = "PendularCheck.dtSafety = " + capillary::format_value(dtSafety) + "; allowed: (0, 1] (times the critical time step)";
-	if (message.empty()) message = checkDt(newId1, newId2);
+	if (message.empty()) message = checkDt(newPair);
 	if (!message.empty()) raiseInStep(scene, message);
 }
 
@@ -287,9 +300,8 @@ void PendularCheck::checkOverlaps(Law2_ScGeom_PendularPhys_Bridge& law, bool fre
 		for (const auto& b : *scene->bodies)
 			if (b)
 				if (const auto* sphere = dynamic_cast<const Sphere*>(b->shape.get())) smallest = math::min(smallest, sphere->radius);
-		const bool valid  = maxOverlap > 0 && maxOverlap <= 2;
-		law.overlapBound  = maxOverlap;
-		law.overlapAlarm  = valid ? maxOverlap * smallest : std::numeric_limits<Real>::infinity();
+		law.overlapBound = maxOverlap;
+		law.overlapAlarm = validOverlapBound(maxOverlap) ? maxOverlap * smallest : std::numeric_limits<Real>::infinity();
 		return; // this step's reports used the old bound
 	}
 	if (report.count == 0) return;
@@ -306,15 +318,12 @@ void PendularCheck::checkOverlaps(Law2_ScGeom_PendularPhys_Bridge& law, bool fre
 	                        << " s the overlap stays below the bound. Warned once; PendularCheck.nOverlaps counts them");
 }
 
-std::string PendularCheck::checkDt(Body::id_t id1, Body::id_t id2)
+std::string PendularCheck::checkDt(bool newPair)
 {
 	if (!(scene->dt > dtSafety * criticalDt)) return "";
 	const std::string pair = "interaction " + std::to_string(criticalPair[0]) + "-" + std::to_string(criticalPair[1]);
 	if (adaptDt) {
-		int initialized = 0, finalized = 0, ranks = 1;
-		MPI_Initialized(&initialized);
-		MPI_Finalized(&finalized);
-		if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+		const int ranks = mpiRanks();
 		if (ranks > 1) return "PendularCheck.adaptDt = True under MPI with " + std::to_string(ranks) + " ranks: each rank would change its own O.dt; set it False and O.dt from stable_dt()";
 		const Real before = scene->dt;
 		scene->dt         = dtSafety * criticalDt;
@@ -323,7 +332,7 @@ std::string PendularCheck::checkDt(Body::id_t id1, Body::id_t id2)
 		                                       << dtSafety << " times the critical time step of " << pair);
 		return "";
 	}
-	if (scene->dt == warnedDt && id1 < 0) return ""; // once per value of O.dt, unless a new pair lowered the limit
+	if (scene->dt == warnedDt && !newPair) return ""; // once per value of O.dt, unless a new pair lowered the limit
 	warnedDt = scene->dt;
 	++dtWarnings;
 	LOG_WARN("O.dt = " << capillary::format_value(scene->dt) << " s exceeds dtSafety = " << dtSafety << " times the smallest two-body critical time step "
@@ -337,13 +346,8 @@ void PendularCheck::raiseInStep(Scene* scene, const std::string& message)
 	// Under mpiexec (yade.mpy), the other ranks wait for this one inside the step: an exception
 	// here would leave them, and the master's O.run, blocked for ever. End the whole run instead,
 	// with the message.
-	int initialized = 0, finalized = 0, ranks = 1, rank = 0;
-	MPI_Initialized(&initialized);
-	MPI_Finalized(&finalized);
-	if (initialized && !finalized) {
-		MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-		MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-	}
+	int       rank  = 0;
+	const int ranks = mpiRanks(&rank);
 	if (ranks > 1) {
 		LOG_ERROR("MPI rank " << rank << " of " << ranks << ": " << message << "; aborting all ranks (MPI_Abort)");
 		std::cerr << "yade-capillary, MPI rank " << rank << ": ValueError: " << message << std::endl;

@@ -249,8 +249,9 @@ class PendularCheck : public GlobalEngine {
 	bool   overlapWarned = false;
 	// Hands maxOverlap to `law` and takes what its contacts reported (see action()).
 	void checkOverlaps(Law2_ScGeom_PendularPhys_Bridge& law, bool fresh);
-	// The step's dt check: warns, or with adaptDt lowers O.dt; returns an input error ("" if none).
-	std::string checkDt(Body::id_t id1, Body::id_t id2);
+	// The step's dt check: warns (again if newPair lowered the limit), or with adaptDt lowers O.dt;
+	// returns an input error ("" if none).
+	std::string checkDt(bool newPair);
 	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of this
 	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp), and the erase and clear
 	// of BodyContainer and InteractionContainer, so that the liquid they remove is accounted for.

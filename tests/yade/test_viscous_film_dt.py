@@ -33,16 +33,19 @@ def mass(r):
     return RHO * 4 / 3 * math.pi * r ** 3
 
 
-def expected_limit(R1, R2, volume, tc=TC):
+def expected_limit(R1, R2, volume, tc=TC, eta=ETA):
     """Two free solid spheres: the leapfrog limit of kn, cn + c_visc (normal) and ks, cs + c_t + c_r
-    (tangential, mass 2/7 m), the viscous coefficients at contact (S = 0, evaluated at S_min) from the kernels."""
+    (tangential, mass 2/7 m), the viscous coefficients at contact (S = 0, evaluated at S_min) from the
+    kernels; eta = 0: the contact's dashpots alone."""
     m = mass(R1) * mass(R2) / (mass(R1) + mass(R2))
     w, x, xt = math.pi / tc, damping_ratio_x(EN), -math.log(ET) / math.pi
     kn, cn = m * w * w * (1 + x * x), 2 * m * w * x
     ks, cs = 2 / 7 * m * w * w * (1 + xt * xt), 2 / 7 * 2 * m * w * xt
-    c_visc = -kernels.viscous_normal_force("pitois", 0.0, 1.0, R1, R2, ETA, volume)  # f = -c v_n at v_n = 1
-    t = kernels.viscous_tangential(0.0, (1, 0, 0), (0, 1, 0), R1, R2, ETA)
-    return min(oscillator_limit(kn, cn + c_visc, m), oscillator_limit(ks, cs + t["c_t"] + t["c_r"], 2 / 7 * m))
+    if eta > 0:
+        cn -= kernels.viscous_normal_force("pitois", 0.0, 1.0, R1, R2, eta, volume)  # f = -c v_n at v_n = 1
+        t = kernels.viscous_tangential(0.0, (1, 0, 0), (0, 1, 0), R1, R2, eta)
+        cs += t["c_t"] + t["c_r"]
+    return min(oscillator_limit(kn, cn, m), oscillator_limit(ks, cs, 2 / 7 * m))
 
 
 def check_engine():
@@ -88,12 +91,12 @@ def row(liquid, loop):
         x += r
     O.engines = engines(loop=loop)
     O.dt = stable_dt()
-    e0 = sum(0.5 * b.state.mass * b.state.vel.squaredNorm() for b in O.bodies if b.dynamic)
+    kinetic = lambda: sum(0.5 * b.state.mass * b.state.vel.squaredNorm() for b in O.bodies if b.dynamic)  # noqa: E731
+    e0 = kinetic()
     e_max, v_max = e0, 0.0
     for _ in range(20000):
         O.step()
-        e = sum(0.5 * b.state.mass * b.state.vel.squaredNorm() for b in O.bodies if b.dynamic)
-        e_max = max(e_max, e)
+        e_max = max(e_max, kinetic())
         v_max = max(v_max, max(b.state.vel.norm() for b in O.bodies if b.dynamic))
     formed = O.engines[2].lawDispatcher.functors[0].liquidFormed
     return e0, e_max, v_max, formed
@@ -121,11 +124,7 @@ def approach(adapt, liquid="film", loop="fused"):
     O.engines = engines(loop=loop)
     check = check_engine()
     check.adaptDt = adapt
-    m2 = mass(SMALL) / 2  # the viscous-free limit of the pair
-    w, x, xt = math.pi / TC, damping_ratio_x(EN), -math.log(ET) / math.pi
-    dt_dry = min(oscillator_limit(m2 * w * w * (1 + x * x), 2 * m2 * w * x, m2),
-                 oscillator_limit(2 / 7 * m2 * w * w * (1 + xt * xt), 2 / 7 * 2 * m2 * w * xt, 2 / 7 * m2))
-    O.dt = 0.9 * check.dtSafety * dt_dry
+    O.dt = 0.9 * check.dtSafety * expected_limit(SMALL, SMALL, 0.0, eta=0.0)  # below the pair's limit without viscosity
     first = None
     for _ in range(int(2e-5 / 0.01 / O.dt) + 10):
         O.step()
