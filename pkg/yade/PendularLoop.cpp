@@ -37,14 +37,14 @@ namespace {
 	// fraction of the smallest sphere radius from where it was at its start.
 	constexpr Real epochMove = 0.1;
 	// Entries of the container per chunk of the pass's static schedule: small enough that the threads
-	// get nearly equal shares of a short list (1024 gave one of two threads 4 chunks of the ci cell's 7,
-	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
+	// get nearly equal shares of a short list (with a few chunks per thread, one chunk more is a large
+	// share), large enough that a thread's entries stay mostly contiguous.
 	constexpr long passChunk = 256;
 
 	// Sorts (key, entry) pairs by key, key = id1 << 32 | id2 (see Slot::key), id1 below `bound` (the
-	// number of bodies): a counting pass by id1, then by id2 within each id1 (a few entries each).
-	// std::sort took about 0.7 ms of the ci cell's 1.4 ms sort of 13 600 entries, at nearly every run of
-	// the collider. Keys are unique pairs of ids, so the result is the one sorted order.
+	// number of bodies): a counting pass by id1, then by id2 within each id1 (a few entries each), in
+	// linear time instead of std::sort's n log n at nearly every run of the collider (docs/performance.md,
+	// "Counting sort"). Keys are unique pairs of ids, so the result is the one sorted order.
 	void sortByKey(std::vector<std::pair<uint64_t, size_t>>& order, uint64_t bound)
 	{
 		uint64_t largest = 0;
@@ -203,10 +203,9 @@ void PendularLoop::gather(int threads)
 	bool                      lastPendular = false;
 	shared_ptr<Material>      heldMaterial;
 	// The class index of the last shape's class, by its dynamic type (typeid reads the vtable that the object
-	// points to): Shape::getClassIndex is a virtual call into libyade per body otherwise, about 4 ns each. The
-	// gathering of the ci cell (with the other per-step work before the pass) took 47-53 µs per step on one
-	// thread with it, 41-47 without (8 alternating runs of 1000 steps, docs/performance.md). type_info objects are
-	// static: an address seen once is never another class's.
+	// points to): Shape::getClassIndex is a virtual call into libyade per body otherwise, which the compiler
+	// cannot inline (docs/performance.md, "Per-body checks without two calls into libyade"). type_info objects
+	// are static: an address seen once is never another class's.
 	const std::type_info*     lastShapeType  = nullptr;
 	int                       lastShapeIndex = -1;
 	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
@@ -427,8 +426,9 @@ void PendularLoop::action()
 	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
 	// it (one half per thread left one thread idle a third of the time).
 	// A full pass lists the entries that the passes of this epoch may have to visit (see buildWork) as it
-	// visits them, each thread those of its chunks (a list made after the pass read every slot again: 85 µs
-	// per full pass on the ci cell on one thread, 100 on two, where half the slots come from the other core).
+	// visits them, each thread those of its chunks (a list made after the pass would read every slot again,
+	// on several threads half of them from another core; docs/performance.md, "The list of a full pass made
+	// during the pass").
 	// gather ends an epoch unless move < epochMove * rmin, the same product: each slot left out has
 	// gapBound >= 2 (epochMove rmin) > 2 epochDisplacement at every step of the epoch.
 	const bool listing   = !fast && skipFar && recording && skipApart;
@@ -465,8 +465,9 @@ void PendularLoop::action()
 			// Every thread of the team takes this branch or none (the same team size). Each computes first its
 			// entries that reach other parts and says so (handOffs), then the rest of its part; then it adds
 			// what the others computed for the bodies of its part, as soon as they have said so. Behind a
-			// barrier instead, the second thread of the ci cell did the whole hand-over while the first waited
-			// (the part of the lower ids reaches the other, not the reverse): 8-13 µs per step on two threads.
+			// barrier instead, a thread whose part the others reach waits for them and then hands over alone
+			// (in a cell whose ids grow with height, the part of the lower ids reaches the other, not the
+			// reverse; docs/performance.md, "Hand-over without a barrier").
 			const bool handing = partsReady && pendular::teamSize() == threads;
 			HandOff*   own     = handing ? &handOffs[c.thread] : nullptr;
 			const long handAt  = handing ? workBorders[size_t(c.thread)] : -1; // after the entries that reach other parts
@@ -690,10 +691,10 @@ void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
 // The parts of the bodies and of the list of entries (bodyParts, workParts) for `threads` threads. Each
 // thread computes the listed entries whose first body is in its part of the bodies, and gathers, hands
 // over the forces of and moves (PendularIntegrator) the bodies of its part: a body's data then stays in
-// the cache of one core, except for the interactions that cross a part's border (13 % of the real ones
-// in the ci cell, whose ids grow with height). Without it, every step moved most bodies' lines from the
-// core that wrote them to the other one and back: on two threads each thread did its share of the pass
-// and of the gathering 20-50 % slower than one thread alone. The bodies are cut where the estimated cost
+// the cache of one core, except for the interactions that cross a part's border (few where ids follow
+// space, as in a packing built layer by layer). Without it, every step moves most bodies' lines from the
+// core that wrote them to the other one and back (docs/performance.md, "Parts of the bodies, one per
+// thread"). The bodies are cut where the estimated cost
 // of the bodies and their entries is shared in inverse proportion to the threads' paces (threadPace). Each
 // part of the list holds first the entries that reach another part, then the others, each group in the
 // container's order: the same order at every step of the epoch, so that each thread sums the forces on a
@@ -714,8 +715,8 @@ void PendularLoop::shareWork(int threads)
 		return;
 	}
 	// Estimated cost of a body and its entries, in steps of a record: a body's gathering, hand-over and
-	// move together take about as long as a record's step (ci cell, 50 and 45 ns on one thread), a
-	// potential pair a distance check, an interaction through the dispatchers more than a record.
+	// move together take about as long as a record's step (a few cache lines and a few dozen operations
+	// each), a potential pair a distance check, an interaction through the dispatchers more than a record.
 	const auto valid = [n](Body::id_t id) { return id >= 0 && id < n; };
 	shareCost.assign(size_t(n), 1.f);
 	float total = float(n);
@@ -726,10 +727,10 @@ void PendularLoop::shareWork(int threads)
 		total += c;
 	}
 	// Each thread's pace, from the passes on the list since the last share (see threadPace), smoothed (half the
-	// last one's): its share of the estimated cost is inversely proportional to it. With the estimate alone,
-	// the second thread of the ci cell finished its entries 4-5 µs per step later than the first on average
-	// (its bodies all move and have more bridges than the first part's fixed floor; with the paces -0.3 to
-	// -0.9 µs), and in a two-vCPU VM's slow mode one core runs its part 10-15 % slower than the other for seconds.
+	// last one's): its share of the estimated cost is inversely proportional to it. The estimate alone misses
+	// what differs between the parts (moving bodies with more bridges in one, a fixed floor in the other) and
+	// between the cores (one shared with other processes, or slowed by its virtual machine, for seconds; see
+	// docs/performance.md, "Parts that follow the threads' measured paces").
 	if (long(threadPace.size()) != threads) threadPace.assign(size_t(threads), 1);
 	if (paceSteps >= minPaceSteps && long(partCost.size()) == threads && long(paceTime.size()) == threads) {
 		std::vector<double> perCost(static_cast<size_t>(threads));
@@ -832,7 +833,7 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	MPI_Finalized(&finalized);
 	if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
 	if (ranks > 1) return false;
-	// The engines, by class name, once per engine list (the names' strings cost 1 µs per step on the ci cell).
+	// The engines, by class name, once per engine list (getClassName makes a string per engine and call).
 	if (!pendular::sameEngines(ownedEngines, scene->engines)) {
 		static const std::set<std::string> known { "ForceResetter", "PendularForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck",
 			                                   "NewtonIntegrator", "PendularIntegrator", "PyRunner", "RotationEngine", "PendularRotationEngine" };

@@ -70,6 +70,7 @@ public:
 		Vector3r normalForce, shearForce;
 		Real     Fcap;
 	};
+	static_assert(sizeof(Record) == 128 && alignof(Record) == 64, "a Record is two whole cache lines: keep it so");
 	// The members of PendularPhys that a step of a record reads and does not change, and the whole
 	// physics they came from (every member but those of the record), from which the objects of a
 	// record are made again when something reads them (see makeObjects).
@@ -98,10 +99,10 @@ public:
 	static void syncCurrent(bool drop, bool all = true);
 	// Gives the records back to the interactions (as sync with drop) and frees every array the PendularLoop
 	// engines of `scene` hold for it, for a scene about to be replaced (O.reset, O.load: yade_capillary.objects
-	// wraps them). YADE does not destroy the engines of a scene that O.reset replaces (not even its own
-	// InsertionSortCollider; seen with gdb on Debian's YADE 2023.02a), so without this every replaced scene
-	// kept its loop's arrays and, through the records, its interactions: 9.5 MB for a 16^3 packing, about
-	// 1.5 GB for Gladkyy's cell. A loop used again afterwards starts as a new one.
+	// wraps them). YADE 2023.02a does not destroy the engines of a scene that O.reset replaces (not even its
+	// own InsertionSortCollider), so without this every replaced scene would keep its loop's arrays and,
+	// through the records, its interactions: megabytes for a small packing, gigabytes for Gladkyy's cell
+	// (tests/yade/test_records.py checks heldBytes). A loop used again afterwards starts as a new one.
 	static void releaseScene(Scene* scene);
 	static void releaseCurrent() { releaseScene(Omega::instance().getScene().get()); }
 	// Bytes held by the loop's arrays (their capacities; Python: PendularLoop.heldBytes).
