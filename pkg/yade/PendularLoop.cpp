@@ -12,10 +12,12 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <type_traits>
 #include <typeinfo>
 
 #ifdef YADE_OPENMP
@@ -875,21 +877,57 @@ void PendularLoop::load(Record& rec, const shared_ptr<Interaction>& I)
 	rec.Fcap             = phys.Fcap;
 }
 
+namespace {
+	// A boost.serialization saving archive that appends to `key` the bytes of every attribute that a
+	// PendularPhys's serialize() names, but those at the addresses in `skip`: the attribute lists of its
+	// YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY and of its bases' (attributes flagged noSave are not named; none of
+	// PendularPhys's is). An attribute of a type it cannot add fails to compile here.
+	class KeyArchive {
+	public:
+		using is_loading = boost::mpl::false_;
+		using is_saving  = boost::mpl::true_;
+		KeyArchive(std::string& key, const std::array<const void*, 4>& skip)
+		        : key(key)
+		        , skip(skip)
+		{
+		}
+		template <class T> KeyArchive& operator&(const boost::serialization::nvp<T>& member)
+		{
+			add(member.const_value());
+			return *this;
+		}
+
+	private:
+		template <class T> void add(const T& value)
+		{
+			if constexpr (std::is_base_of<Serializable, T>::value) boost::serialization::access::serialize(*this, const_cast<T&>(value), 0u);
+			else {
+				static_assert(std::is_arithmetic<T>::value || std::is_same<T, Vector3r>::value,
+				              "an attribute of PendularPhys whose type PendularLoop::invariantsKey cannot compare: add the type to KeyArchive");
+				if (std::find(skip.begin(), skip.end(), static_cast<const void*>(&value)) == skip.end())
+					key.append(reinterpret_cast<const char*>(&value), sizeof(T));
+			}
+		}
+		std::string&                     key;
+		const std::array<const void*, 4> skip;
+	};
+} // namespace
+
 // The entry of `invariants` for the bridge and contact parameters of `phys`. PendularPhys makes its
 // bridge from its own members (Ip2, and again when loaded), so physics with the same members, bit for
-// bit, have the same bridge: they share an entry (the bridge is checked as well, cheaply).
+// bit, have the same bridge: they share an entry (the bridge is checked as well, cheaply). The members
+// are those that serialize() names (KeyArchive), so that an attribute added to PendularPhys is part of
+// the key without being listed here.
 std::string PendularLoop::invariantsKey(const PendularPhys& phys)
 {
+	const Real  bridge[] = { phys.bridge.rupture, phys.bridge.force0, phys.bridge.force_rupture };
+	const int   model    = int(phys.bridge.m.index());
+	std::string key(reinterpret_cast<const char*>(bridge), sizeof(bridge));
+	key.append(reinterpret_cast<const char*>(&model), sizeof(model));
 	// Every attribute but those of the record (active, Fcap, normalForce, shearForce): the entry's
 	// prototype stands for the physics of all its records when their objects are made again (store).
-	const Real reals[] = { phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.R1, phys.R2, phys.gamma, phys.theta1, phys.theta2,
-		               phys.linearFmax, phys.linearKc, phys.bridge.rupture, phys.bridge.force0, phys.bridge.force_rupture, phys.R, phys.sCrit,
-		               phys.force0, phys.eta, phys.viscousSmin, phys.Fvisc, phys.viscousShear[0], phys.viscousShear[1], phys.viscousShear[2],
-		               phys.sRupture, phys.transfer1, phys.VbMin, phys.VbMax };
-	const int  ints[]  = { phys.modelIndex, phys.ruptureIndex, phys.calibrateIndex, int(phys.bridge.m.index()), phys.extrapolate, phys.wet, phys.forceInContact,
-		               phys.film, phys.filmFormation, phys.pending, phys.viscousIndex, phys.dynamicRupture, phys.swapped, phys.transferIndex };
-	std::string key(reinterpret_cast<const char*>(reals), sizeof(reals));
-	key.append(reinterpret_cast<const char*>(ints), sizeof(ints));
+	KeyArchive archive(key, { &phys.active, &phys.Fcap, &phys.normalForce, &phys.shearForce });
+	boost::serialization::access::serialize(archive, const_cast<PendularPhys&>(phys), 0u);
 	return key;
 }
 
