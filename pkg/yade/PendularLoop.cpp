@@ -1,4 +1,5 @@
 #include "PendularLoop.hpp"
+#include "LoopInstrumentation.hpp"
 #include "Passes.hpp"
 
 #include <pkg/common/Facet.hpp>
@@ -35,14 +36,6 @@ namespace {
 	// lines): prefetched this many interactions ahead, the Interaction itself twice as far.
 	using pendular::prefetchObject;
 	constexpr long prefetchAhead = 8;
-	// An epoch of the bound on the gaps of potential pairs (gather) ends when a body has moved this
-	// fraction of the smallest sphere radius from where it was at its start.
-	constexpr Real epochMove = 0.1;
-	// Entries of the container per chunk of the pass's static schedule: small enough that the threads
-	// get nearly equal shares of a short list (with a few chunks per thread, one chunk more is a large
-	// share), large enough that a thread's entries stay mostly contiguous.
-	constexpr long passChunk = 256;
-
 	// Sorts (key, entry) pairs by key, key = id1 << 32 | id2 (see Slot::key), id1 below `bound` (the
 	// number of bodies): a counting pass by id1, then by id2 within each id1 (a few entries each), in
 	// linear time instead of std::sort's n log n at nearly every run of the collider (docs/performance.md,
@@ -69,14 +62,6 @@ namespace {
 			first = start[id];
 		}
 		order.swap(byId1);
-	}
-
-	// The largest float not above x: a lower bound that fits the 32-byte slot.
-	float roundedDown(Real x)
-	{
-		float f = float(x);
-		if (Real(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-		return f;
 	}
 
 	// What a recorded interaction holds instead of its own ScGeom and PendularPhys: one pair for all,
@@ -159,9 +144,7 @@ void PendularLoop::gather(int threads)
 {
 	const auto&  bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
 	const size_t n      = bodies.size();
-	particles.swap(previous); // the last pass's particles stay readable for the records' shearInc (shearIncrement)
-	// New entries defined: the sweep compares before it writes.
-	particles.resize(n, Particle { Vector3r::Zero(), Vector3r::Zero(), 0, 0, missing, Vector3r::Zero(), 0 });
+	snapshot.begin(n, partition.bodyParts);
 	for (auto& f : threadForce)
 		f.resize(n, Vector3r::Zero());
 	for (auto& t : threadTorque)
@@ -173,45 +156,13 @@ void PendularLoop::gather(int threads)
 			std::fill(threadTorque[k].begin(), threadTorque[k].end(), Vector3r::Zero());
 		}
 	known.forcesPending = false;
-	bodyPointers.scene = nullptr; // valid once the pass is complete
-	bodyPointers.parts = bodyParts;
-	bodyPointers.states.resize(n);
-	bodyPointers.bounds.resize(n);
-	State** const       states = bodyPointers.states.data();
-	const Bound** const bounds = bodyPointers.bounds.data();
-	int                 clumps = 0, aspherical = 0, subdomains = 0;
-	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
-	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
-	// The bound on the gaps of potential pairs. A pair checked at step s with gap g(s) stores
-	// g(s) - 2 D(s) (slot.gapBound); D is the largest distance of a body from its position at the start
-	// of the epoch, so either body moved at most D(s) + D(t) between s and t and g(t) >= g(s) - 2 D(s)
-	// - 2 D(t): the pair is still apart at step t if gapBound > 2 D(t). The epoch starts again (every
-	// potential pair checked) when a body has moved epochMove of the smallest radius, and when any
-	// body's radius, film reach, material kind or subdomain changed (Near.radius encodes them), so
-	// that the bound holds for the radii it was computed with. Films that reach beyond the surface
-	// (formation='films') change every step: no bound then. Checked in the same pass as the gathering.
-	// The bodies of an epoch are those of the pass that started it (epochPending): taken here, by each thread
-	// for its part, from that pass's particles (previous), instead of copied by one thread after it.
-	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
-	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
-	// (A reduction's private copies start at its identity, not at this value: every iteration computes its part.)
-	int        kindsChanged = 0;
-	const bool comparable   = previous.size() == n;
-	const bool takeEpoch    = known.epochPending && comparable;
-	int        restart = known.epochPending ? !comparable : epoch.size() != n, films = 0;
-	// The bodies that other threads' entries reach (sharedBodies, made by shareWork for these parts): see streamStore.
-	const bool streaming = sharedBodies.size() == n;
-	const Material*           lastMaterial = nullptr;
-	bool                      lastPendular = false;
-	shared_ptr<Material>      heldMaterial;
-	// The class index of the last shape's class, by its dynamic type (typeid reads the vtable that the object
-	// points to): Shape::getClassIndex is a virtual call into libyade per body otherwise, which the compiler
-	// cannot inline (docs/performance.md, "Per-body checks without two calls into libyade"). type_info objects
-	// are static: an address seen once is never another class's.
-	const std::type_info*     lastShapeType  = nullptr;
-	int                       lastShapeIndex = -1;
-	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
-	epoch.resize(n);
+	// The gap bound's check of every body (see Pairs), in the same pass as the gathering. The bodies of an
+	// epoch are those of the pass that started it: taken here, by each thread for its part, from that pass's
+	// particles (previous), instead of copied by one thread after it. (A reduction's private copies start at
+	// its identity, not at this value: every iteration computes its part.)
+	const bool comparable = snapshot.previous.size() == n;
+	bool       takeEpoch  = false;
+	int        restart = pairs.startScan(n, comparable, takeEpoch), films = 0;
 	// The force container's reset handed over by PendularForceResetter (takeReset): each thread zeroes the
 	// summed forces and torques of its part of the bodies below (the cache lines it writes in the pass and
 	// reads in PendularIntegrator), the entries of no body after it.
@@ -219,93 +170,40 @@ void PendularLoop::gather(int threads)
 	const long                   resetSize = pendingReset.size;
 	const pendular::SummedArrays reset     = resetting ? pendingReset.summed : pendular::SummedArrays {};
 	pendingReset                           = PendingReset {};
+	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
+	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
+	int                    kindsChanged = 0, clumps = 0, aspherical = 0, subdomains = 0;
+	Real                   move2 = 0, rmin = std::numeric_limits<Real>::infinity();
+	pendular::BodyReader   reader;
 	// Each thread its part of the bodies (bodyParts): the part whose interactions it computes in the pass.
 #ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) \
-        reduction(min : rmin) reduction(| : clumps, aspherical, subdomains) firstprivate(lastMaterial, lastPendular, heldMaterial, lastShapeType, lastShapeIndex)
+#pragma omp parallel num_threads(threads) if (long(n) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) reduction(min : rmin) \
+        reduction(| : clumps, aspherical, subdomains) firstprivate(reader)
 #endif
 	{
-	const auto part = pendular::partOf(bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
-	bool       streamed = false;
+	const auto part = pendular::partOf(partition.bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
 	if (reset.forces) {
 		pendular::zeroEntries(reset.forces, part.first, part.second);
 		pendular::zeroEntries(reset.torques, part.first, part.second);
 	}
+	// The bodies that other threads' entries reach (sharedBodies, made by shareWork for these parts): see streamStore.
+	const bool streaming = partition.sharedBodies.size() == n;
+	bool       streamed  = false;
 	for (size_t id = size_t(part.first); id < size_t(part.second); ++id) {
-		// Two levels: the Body, then, once it is cached, its State and Shape (a sphere's radius is on
-		// the Shape's second cache line).
-		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
-		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
-			const Body& ahead = *bodies[id + prefetchAhead];
-			prefetchObject(ahead.state.get());
-			__builtin_prefetch(ahead.shape.get());
-			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
-		}
+		pendular::BodySnapshot::prefetch(bodies, id, prefetchAhead);
 		// The last pass's particle: a streamed one is in memory only.
 		if (streaming && comparable && id + prefetchAhead < n) {
-			if (takeEpoch) prefetchObject(&previous[id + prefetchAhead]);
-			else __builtin_prefetch(&previous[id + prefetchAhead]);
+			if (takeEpoch) prefetchObject(&snapshot.previous[id + prefetchAhead]);
+			else __builtin_prefetch(&snapshot.previous[id + prefetchAhead]);
 		}
-		// Made in registers, stored once (below).
-		// Value-initialized: streamStore copies whole lines, padding included (never read), which GCC would
-		// otherwise warn may be uninitialized.
-		Particle    p {};
 		const auto& b = bodies[id];
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
-		pendular::readBody(b.get(), scene->subdomain, states[id], bounds[id], clumps, aspherical, subdomains);
-		if (!b) p = Particle { Vector3r::Zero(), Vector3r::Zero(), 0, 0, missing, Vector3r::Zero(), 0 };
-		else {
-			const State& s = *b->state;
-			p.pos          = s.pos;
-			p.vel          = s.vel;
-			p.angVel       = s.angVel;
-			p.subdomain    = b->subdomain;
-			p.radius       = 0;
-			p.reach        = 0;
-			// The material's class, once per run of bodies with the same material (a virtual call per body
-			// otherwise); held while it is the last one, so that no other object can take its address.
-			if (b->material.get() != lastMaterial) {
-				heldMaterial = b->material;
-				lastMaterial = heldMaterial.get();
-				lastPendular = lastMaterial && lastMaterial->getClassIndex() == pendularIndex;
-			}
-			if (b->isClump()) p.kind = clump;
-			else if (!b->shape || !lastPendular)
-				p.kind = other;
-			else {
-				const Shape&          shapeObject = *b->shape;
-				const std::type_info& shapeType   = typeid(shapeObject);
-				if (&shapeType != lastShapeType) {
-					lastShapeType  = &shapeType;
-					lastShapeIndex = shapeObject.getClassIndex();
-				}
-				const int shape = lastShapeIndex;
-				if (shape == sphereIndex) {
-					p.kind   = pendularSphere;
-					p.radius = static_cast<const Sphere&>(*b->shape).radius;
-					// Only materials whose bridges form when the films touch reach beyond the surface.
-					if (static_cast<const PendularMat&>(*b->material).filmFormation)
-						if (const auto* film = dynamic_cast<const PendularState*>(&s)) p.reach = film->thickness(p.radius);
-				} else
-					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
-			}
-		}
-		if (streaming && sharedBodies[id]) {
-			pendular::streamStore(particles[id], p);
-			streamed = true;
-		} else
-			particles[id].update(p);
-		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != previous[id].kind || p.subdomain != previous[id].subdomain));
-		if (takeEpoch) epoch[id] = nearOf(previous[id], scene->subdomain, true);
-		if (p.kind != pendularSphere) {
-			restart = math::max(restart, int(epoch[id].radius != 0));
-			continue;
-		}
-		const Near q = nearOf(p, scene->subdomain, true);
-		films    = math::max(films, int(p.reach != 0));
-		rmin     = math::min(rmin, p.radius);
-		restart  = math::max(restart, int(epoch[id].radius != q.radius));
-		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
+		pendular::readBody(b.get(), scene->subdomain, snapshot.pointers.states[id], snapshot.pointers.bounds[id], clumps, aspherical, subdomains);
+		const Particle  p    = reader.read(b.get()); // made in registers, stored once
+		const Particle& last = snapshot.previous[id];
+		streamed |= snapshot.store(id, p, streaming && partition.sharedBodies[id]);
+		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != last.kind || p.subdomain != last.subdomain));
+		pairs.observe(id, p, last, takeEpoch, scene->subdomain, restart, films, rmin, move2);
 	}
 	if (streamed) pendular::streamFence(); // before the region's barrier, after which other threads read them
 	}
@@ -313,22 +211,9 @@ void PendularLoop::gather(int threads)
 		pendular::zeroEntries(reset.forces, long(n), resetSize);
 		pendular::zeroEntries(reset.torques, long(n), resetSize);
 	}
-	bodyPointers.clumps     = clumps;
-	bodyPointers.aspherical = aspherical;
-	bodyPointers.subdomains = subdomains;
-	bodyPointers.iter       = scene->iter;
-	bodyPointers.scene      = scene;
-	const Real move         = math::sqrt(move2);
-	known.fullCheck         = restart || films || !(move < epochMove * rmin);
-	known.bodiesKept        = !kindsChanged;
-	known.films             = films;
-	known.epochPending      = known.fullCheck;
-	if (known.fullCheck) {
-		known.epochDisplacement = 0;
-		known.epochRmin         = rmin;
-		++known.epochCount;
-	} else
-		known.epochDisplacement = math::max(known.epochDisplacement, move);
+	snapshot.finish(scene, scene->iter, clumps, aspherical, subdomains);
+	snapshot.kindsKept = !kindsChanged;
+	pairs.endScan(restart, films, math::sqrt(move2), rmin);
 }
 
 void PendularLoop::action()
@@ -366,7 +251,7 @@ void PendularLoop::action()
 	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
 		const auto ts = Clock::now();
 		sortInteractions();
-		workValid = false;
+		pairs.workValid = false;
 		sortTime += ns(ts, Clock::now());
 	}
 	sortPending = false;
@@ -375,7 +260,7 @@ void PendularLoop::action()
 	gather(threads); // also zeroes the force arrays after a step that ended before its flush
 	// The force container covers every body and its per-thread entries are summed (addMaxId, sync): the
 	// pass adds the forces of each thread's part of the bodies into its summed arrays (see ThreadSink).
-	const long bodies = long(particles.size());
+	const long bodies = long(snapshot.particles.size());
 	if (bodies > 0) {
 		scene->forces.addMaxId(Body::id_t(bodies - 1));
 		scene->forces.sync();
@@ -390,7 +275,7 @@ void PendularLoop::action()
 	const auto&      interactions = *scene->interactions;
 	const long       size         = scene->interactions->size();
 	long             fused = 0, dispatchedCount = 0, apart = 0, recorded = 0, bounded = 0;
-	slots.resize(size);
+	pairs.slots.resize(size);
 	toRecord.resize(threads);
 	toForget.resize(threads);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
@@ -405,22 +290,18 @@ void PendularLoop::action()
 	// sorting, another scene. Behind that, the first and last entries must be the interactions of the
 	// last pass (an erasure moves the last entry into its hole, an insertion appends: erasing and
 	// inserting one keeps the size, not the last entry).
-	const bool fast = skipFar && recording && skipApart && !known.fullCheck && workValid && known.workEpoch == known.epochCount
-	        && known.workColliderRuns == colliderRuns && known.workContainer == scene->interactions.get() && long(known.workSize) == size
-	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
+	const bool fast = skipFar && recording && skipApart && !pairs.fullCheck && pairs.listValid(colliderRuns, *scene->interactions);
 	long       disorder = 0;
-	const long m        = fast ? long(work.size()) : size;
+	const long m        = fast ? long(pairs.work.size()) : size;
 	// The parts of the bodies and of the list, and the borders, are those of this pass (shareWork made
 	// them for this list and these bodies; the pass does not change them). Then a pass on the list whose
 	// threads add their own bodies' forces into the container hands the borders over in its own parallel
 	// region (partsReady, see handOverBorders), if the whole team runs it.
 	// (workParts as partOf takes it: a thread that waits for another's hand-off relies on that thread's part
 	// holding its workBorders.)
-	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.front() == 0 && workParts.back() == m && long(borders.size()) == threads
-	        && long(workBorders.size()) == threads && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
+	const bool partsValid = fast && partition.valid(m, threads, bodies);
 	const bool partsReady = partsValid && summed.forces;
-	if (partsReady && long(handOffs.size()) != threads) handOffs = std::vector<HandOff>(size_t(threads));
-	const long handOffAt = partsReady ? ++handOffPass : 0;
+	const long handOffAt  = partsReady ? partition.nextHandOff(threads) : 0;
 	// Shares fixed between two full passes, so that each thread sums the forces on its bodies in the same
 	// order at every step of an epoch. The list is shared by the parts of the bodies (shareWork, which
 	// follows the threads' measured paces: two runs on several threads may differ by round-off, as YADE's
@@ -434,13 +315,8 @@ void PendularLoop::action()
 	// gather ends an epoch unless move < epochMove * rmin, the same product: each slot left out has
 	// gapBound >= 2 (epochMove rmin) > 2 epochDisplacement at every step of the epoch.
 	const bool listing   = !fast && skipFar && recording && skipApart;
-	const Real threshold = 2 * (epochMove * known.epochRmin);
-	if (listing) {
-		listed.resize(size_t(threads));
-		for (auto& list : listed)
-			list.clear();
-		chunkEnds.resize(size_t((size + passChunk - 1) / passChunk));
-	}
+	const Real threshold = pairs.threshold();
+	if (listing) pairs.startListing(threads, size);
 	// teamComplete: each thread computed its part of the list (then the flush reads only parts and borders).
 	bool teamComplete = true;
 	// This pass's entries of busyTimes (see traceBusy), one per thread, written by each thread.
@@ -455,14 +331,15 @@ void PendularLoop::action()
 		c.thread     = pendular::threadNumber();
 		teamComplete = pendular::teamSize() == threads;
 		if (summed.forces) {
-			const auto part              = pendular::partOf(bodyParts, bodies, c.thread, pendular::teamSize());
+			const auto part              = pendular::partOf(partition.bodyParts, bodies, c.thread, pendular::teamSize());
 			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
 		}
 		if (fast) {
 			const auto started = Clock::now();
+			const auto& work   = pairs.work;
 			// Each thread its part of the list (workParts): the entries whose first body is in its part of
 			// the bodies, which it gathered and will move.
-			const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
+			const auto part = pendular::partOf(partition.workParts, m, c.thread, pendular::teamSize());
 			const long end  = part.second;
 			// Every thread of the team takes this branch or none (the same team size). Each computes first its
 			// entries that reach other parts and says so (handOffs), then the rest of its part; then it adds
@@ -471,14 +348,14 @@ void PendularLoop::action()
 			// (in a cell whose ids grow with height, the part of the lower ids reaches the other, not the
 			// reverse; docs/performance.md, "Hand-over without a barrier").
 			const bool handing = partsReady && pendular::teamSize() == threads;
-			HandOff*   own     = handing ? &handOffs[c.thread] : nullptr;
-			const long handAt  = handing ? workBorders[size_t(c.thread)] : -1; // after the entries that reach other parts
+			pendular::WorkPartition::HandOff* own = handing ? &partition.handOffs[c.thread] : nullptr;
+			const long handAt  = handing ? partition.workBorders[size_t(c.thread)] : -1; // after the entries that reach other parts
 			if (handAt == part.first) own->pass.store(handOffAt, std::memory_order_release);
 			for (long k = part.first; k < end; ++k) {
 				// A third level for the list: its entries are not contiguous, so the hardware does not
 				// fetch the slots and container entries that the prefetches of visit() read.
 				if (k + 4 * prefetchAhead < end) {
-					__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
+					__builtin_prefetch(&pairs.slots[work[k + 4 * prefetchAhead]]);
 					__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
 				}
 				visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1,
@@ -489,33 +366,32 @@ void PendularLoop::action()
 			auto busy = Clock::now() - started;
 			if (handing) {
 				for (int k = 0; k < threads; ++k)
-					if (k != c.thread && !borders[size_t(k)][size_t(c.thread)].empty())
-						pendular::waitFor(handOffs[k].pass, handOffAt);
+					if (k != c.thread && !partition.borders[size_t(k)][size_t(c.thread)].empty())
+						pendular::waitFor(partition.handOffs[k].pass, handOffAt);
 				const auto handing0 = Clock::now();
 				handOverBorders(c.thread, summed);
 				busy += Clock::now() - handing0;
 			}
 			const Real busyNs = Real(std::chrono::duration_cast<std::chrono::nanoseconds>(busy).count());
-			if (partsValid && pendular::teamSize() == threads && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += busyNs;
+			if (partsValid && pendular::teamSize() == threads && long(partition.paceTime.size()) == threads) partition.paceTime[size_t(c.thread)] += busyNs;
 			if (tracing) busyTimes[traceAt + size_t(c.thread)] = busyNs;
 		} else {
 			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
 			long     before    = -2;
 			uint64_t beforeKey = 0;
 #ifdef YADE_OPENMP
-#pragma omp for schedule(static, passChunk)
+#pragma omp for schedule(static, pendular::passChunk)
 #endif
 			for (long i = 0; i < size; ++i) {
 				visit(i, i + prefetchAhead < size ? i + prefetchAhead : -1, i + 2 * prefetchAhead < size ? i + 2 * prefetchAhead : -1, r, skipApart,
 				      recording, c);
-				const Slot&    slot = slots[i];
+				const Slot&    slot = pairs.slots[i];
 				const uint64_t key  = slot.key();
 				if (i == before + 1 && key < beforeKey) ++disorder;
 				before    = i;
 				beforeKey = key;
 				if (listing) {
-					if (!listedOut(slot, threshold)) listed[size_t(c.thread)].push_back(i);
-					if ((i + 1) % passChunk == 0 || i + 1 == size) chunkEnds[size_t(i / passChunk)] = ChunkEnd { c.thread, long(listed[size_t(c.thread)].size()) };
+					pairs.list(i, slot, threshold, c.thread, size);
 				}
 			}
 		}
@@ -528,7 +404,7 @@ void PendularLoop::action()
 	// The skipped entries, counted as the full pass counts them (apart by the bound).
 	// The flush may read the arrays by parts and borders (see flushForces).
 	const bool parted = partsValid && teamComplete;
-	if (parted) ++paceSteps;
+	if (parted) ++partition.paceSteps;
 	if (tracing) --traceBusy;
 	nSkipped = size - m;
 	fused += nSkipped;
@@ -548,7 +424,8 @@ void PendularLoop::action()
 	known.seenDt         = scene->dt; // what the records' shearInc now follows from (recordShearInc)
 	known.seenRatcheting = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
 	settleRecords();
-	if (!fast) buildWork(listing, colliderRuns, threads);
+	if (!fast && pairs.buildList(listing, colliderRuns, *scene->interactions))
+		partition.share(pairs.work, pairs.slots, long(snapshot.particles.size()), threads, threadPace);
 	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
 	flushForces(threads, parted, summed.forces != nullptr, partsReady && teamComplete);
@@ -567,18 +444,18 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 	// Led by the slots alone (a slot that no longer matches its entry prefetches the wrong lines, which
 	// costs nothing but the prefetch; checking costs two more reads per entry).
 	if (ahead2 >= 0) {
-		const Slot& ahead = slots[ahead2];
+		const Slot& ahead = pairs.slots[ahead2];
 		if (ahead.recorded()) {
 			if (size_t(ahead.record) < records.size()) prefetchObject(&records[ahead.record]);
 		} else if (!ahead.potential())
 			prefetchObject(interactions[ahead2].get());
 	}
 	if (ahead1 >= 0) {
-		const Slot& ahead = slots[ahead1];
+		const Slot& ahead = pairs.slots[ahead1];
 		if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids; torques only with friction, not prefetched)
-			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
-				prefetchObject(&particles[ahead.id1]);
-				prefetchObject(&particles[ahead.id2]);
+			if (size_t(math::max(ahead.id1, ahead.id2)) < snapshot.particles.size()) {
+				prefetchObject(&snapshot.particles[ahead.id1]);
+				prefetchObject(&snapshot.particles[ahead.id2]);
 				const DirectPart& direct = directParts[size_t(c.thread)];
 				__builtin_prefetch(direct.has(ahead.id1) ? &direct.forces[ahead.id1] : &threadForce[c.thread][ahead.id1], 1);
 				__builtin_prefetch(direct.has(ahead.id2) ? &direct.forces[ahead.id2] : &threadForce[c.thread][ahead.id2], 1);
@@ -587,15 +464,15 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			const auto& J = interactions[ahead1];
 			if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
 			if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-		} else if (skipApart && !apartByBound(ahead)) { // a potential pair to check: its bodies
-			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
-				__builtin_prefetch(&particles[ahead.id1]);
-				__builtin_prefetch(&particles[ahead.id2]);
+		} else if (skipApart && !pairs.apartByBound(ahead)) { // a potential pair to check: its bodies
+			if (size_t(math::max(ahead.id1, ahead.id2)) < snapshot.particles.size()) {
+				__builtin_prefetch(&snapshot.particles[ahead.id1]);
+				__builtin_prefetch(&snapshot.particles[ahead.id2]);
 			}
 		}
 	}
 	const shared_ptr<Interaction>& I    = interactions[i];
-	Slot&                          slot = slots[i];
+	Slot&                          slot = pairs.slots[i];
 	// Another interaction than in the last step: new (reconcile has given an interaction that an erasure
 	// moved here the slot of its record).
 	if (!slot.same(I)) slot.record = Slot::none;
@@ -604,8 +481,8 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			Record& rec = records[slot.record];
 			// The record's bodies (the body container may have shrunk: O.bodies.replace).
 			// bodiesKept: no body changed since the last pass, in which the record's were such spheres.
-			if (known.bodiesKept
-			    || (size_t(math::max(slot.id1, slot.id2)) < particles.size() && sphereHere(slot.id1) && sphereHere(slot.id2))) {
+			if (snapshot.kindsKept
+			    || (size_t(math::max(slot.id1, slot.id2)) < snapshot.particles.size() && sphereHere(slot.id1) && sphereHere(slot.id2))) {
 				++c.fused;
 				++c.recorded;
 				if (!recordStep(rec, r, c.thread)) {
@@ -617,27 +494,27 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 				return;
 			}
 			// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-			store(rec, *I, previous); // its own objects again (made in this thread: the record is forgotten after the pass)
+			store(rec, *I, snapshot.previous); // its own objects again (made in this thread: the record is forgotten after the pass)
 			toForget[c.thread].push_back(slot.record);
 			slot.record = Slot::none;
 		} else if (skipApart && slot.potential()) {
 			// A potential interaction of two PendularMat spheres seen in an earlier step (same object, so
 			// the same ids; it became real only in this loop, which updates the slot). Apart by more than
 			// the bodies can have moved since its last check: nothing to read but the slot (see gather).
-			if (apartByBound(slot)) {
+			if (pairs.apartByBound(slot)) {
 				++c.fused;
 				++c.apart;
 				++c.bounded;
 				return;
 			}
 			// Else one distance check on the gathered data, without reading the Interaction.
-			const Near q1 = nearOf(particles[slot.id1], scene->subdomain, known.films);
-			const Near q2 = nearOf(particles[slot.id2], scene->subdomain, known.films);
+			const pendular::Near q1 = pendular::nearOf(snapshot.particles[slot.id1], scene->subdomain, pairs.films);
+			const pendular::Near q2 = pendular::nearOf(snapshot.particles[slot.id2], scene->subdomain, pairs.films);
 			if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
 				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
 				const Real d2   = (q2.pos - q1.pos).squaredNorm();
 				if (d2 > sumR * sumR) {
-					slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * known.epochDisplacement);
+					slot.gapBound = pendular::roundedDown(math::sqrt(d2) - sumR - 2 * pairs.epochDisplacement);
 					++c.fused;
 					++c.apart;
 					return;
@@ -664,157 +541,6 @@ long PendularLoop::colliderRunCount() const
 	for (const auto& e : scene->engines)
 		if (const auto* collider = dynamic_cast<const InsertionSortCollider*>(e.get())) runs += collider->numAction;
 	return runs;
-}
-
-// After a full pass: the entries that a pass of this epoch may have to visit, every one but the
-// potential pairs whose bound on the gap exceeds twice the largest move of the epoch (epochMove of the
-// smallest radius; the epoch ends before a body moves that far), which the full pass would skip at
-// every step of the epoch: the threads' lists of the pass, chunk by chunk in the container's order.
-// use = false: no list (the next pass is a full one).
-void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
-{
-	work.clear();
-	workValid = use;
-	if (!use) return;
-	const long        size = long(scene->interactions->size());
-	std::vector<long> from(listed.size(), 0);
-	for (const ChunkEnd& chunk : chunkEnds) {
-		const auto& list = listed[size_t(chunk.thread)];
-		work.insert(work.end(), list.begin() + from[size_t(chunk.thread)], list.begin() + chunk.end);
-		from[size_t(chunk.thread)] = chunk.end;
-	}
-	shareWork(threads);
-	known.workEpoch        = known.epochCount;
-	known.workColliderRuns = colliderRuns;
-	known.workContainer    = scene->interactions.get();
-	known.workSize         = size_t(size);
-}
-
-// The parts of the bodies and of the list of entries (bodyParts, workParts) for `threads` threads. Each
-// thread computes the listed entries whose first body is in its part of the bodies, and gathers, hands
-// over the forces of and moves (PendularIntegrator) the bodies of its part: a body's data then stays in
-// the cache of one core, except for the interactions that cross a part's border (few where ids follow
-// space, as in a packing built layer by layer). Without it, every step moves most bodies' lines from the
-// core that wrote them to the other one and back (docs/performance.md, "Parts of the bodies, one per
-// thread"). The bodies are cut where the estimated cost
-// of the bodies and their entries is shared in inverse proportion to the threads' paces (threadPace). Each
-// part of the list holds first the entries that reach another part, then the others, each group in the
-// container's order: the same order at every step of the epoch, so that each thread sums the forces on a
-// body in the same order (on one thread, the container's order: InteractionLoop's sums).
-void PendularLoop::shareWork(int threads)
-{
-	const long n = long(particles.size());
-	if (threads < 2 || n == 0) {
-		bodyParts.clear();
-		workParts.clear();
-		workBorders.clear();
-		borders.clear();
-		sharedBodies.clear();
-		threadPace.clear();
-		partCost.clear();
-		paceTime.clear();
-		paceSteps = 0;
-		return;
-	}
-	// Estimated cost of a body and its entries, in steps of a record: a body's gathering, hand-over and
-	// move together take about as long as a record's step (a few cache lines and a few dozen operations
-	// each), a potential pair a distance check, an interaction through the dispatchers more than a record.
-	const auto valid = [n](Body::id_t id) { return id >= 0 && id < n; };
-	shareCost.assign(size_t(n), 1.f);
-	float total = float(n);
-	for (const long i : work) {
-		const Slot& slot = slots[i];
-		const float c    = slot.recorded() ? 1.f : slot.potential() ? 0.25f : 2.f;
-		if (valid(slot.id1)) shareCost[size_t(slot.id1)] += c;
-		total += c;
-	}
-	// Each thread's pace, from the passes on the list since the last share (see threadPace), smoothed (half the
-	// last one's): its share of the estimated cost is inversely proportional to it. The estimate alone misses
-	// what differs between the parts (moving bodies with more bridges in one, a fixed floor in the other) and
-	// between the cores (one shared with other processes, or slowed by its virtual machine, for seconds; see
-	// docs/performance.md, "Parts that follow the threads' measured paces").
-	if (long(threadPace.size()) != threads) threadPace.assign(size_t(threads), 1);
-	if (paceSteps >= minPaceSteps && long(partCost.size()) == threads && long(paceTime.size()) == threads) {
-		std::vector<double> perCost(static_cast<size_t>(threads));
-		double              mean     = 0;
-		bool                measured = true;
-		for (int k = 0; k < threads; ++k) {
-			measured = measured && partCost[size_t(k)] > 0 && paceTime[size_t(k)] > 0;
-			perCost[size_t(k)] = paceTime[size_t(k)] / double(partCost[size_t(k)]);
-			mean += perCost[size_t(k)] / threads;
-		}
-		for (int k = 0; measured && k < threads; ++k)
-			threadPace[size_t(k)] = math::min(maxPace, math::max(1 / maxPace, 0.5 * threadPace[size_t(k)] + 0.5 * Real(perCost[size_t(k)] / mean)));
-	}
-	paceTime.assign(size_t(threads), 0);
-	paceSteps = 0;
-	Real shares = 0;
-	for (const Real p : threadPace)
-		shares += 1 / p;
-	bodyParts.assign(size_t(threads) + 1, n);
-	bodyParts[0] = 0;
-	float sum   = 0;
-	Real  below = 1 / threadPace[0]; // the shares of the parts before bound t
-	int   t     = 1;
-	for (long id = 0; id < n && t < threads; ++id) {
-		sum += shareCost[size_t(id)];
-		while (t < threads && sum >= float(total * below / shares)) {
-			bodyParts[size_t(t)] = id + 1;
-			below += 1 / threadPace[size_t(t++)];
-		}
-	}
-	partCost.assign(size_t(threads), 0);
-	for (int k = 0; k < threads; ++k)
-		for (long id = bodyParts[size_t(k)]; id < bodyParts[size_t(k) + 1]; ++id)
-			partCost[size_t(k)] += shareCost[size_t(id)];
-	// The part of each body, looked up once per entry and body below.
-	bodyPart.resize(size_t(n));
-	for (int k = 0; k < threads; ++k)
-		std::fill(bodyPart.begin() + bodyParts[size_t(k)], bodyPart.begin() + bodyParts[size_t(k) + 1], k);
-	const auto partOfBody = [&](Body::id_t id) { return id < 0 ? 0 : id >= n ? threads - 1 : bodyPart[size_t(id)]; };
-	// The list, stably by the part of each entry's first body, each part's entries that reach another part
-	// first (the pass hands them over as soon as they are computed, see handOffs); the bodies of other parts
-	// that each part's entries reach (borders, see flushForces), marked per body (one bit per part), so that
-	// the borders come out in ascending order without sorting.
-	const size_t words   = (size_t(threads) + 63) / 64;
-	const auto   reaches = [&](const Slot& slot, int k) {
-                return (valid(slot.id1) && bodyPart[size_t(slot.id1)] != k) || (valid(slot.id2) && bodyPart[size_t(slot.id2)] != k);
-	};
-	workParts.assign(size_t(threads) + 1, 0);
-	workBorders.assign(size_t(threads), 0);
-	for (const long i : work) {
-		const int k = partOfBody(slots[i].id1);
-		++workParts[size_t(k) + 1];
-		workBorders[size_t(k)] += reaches(slots[i], k);
-	}
-	for (int k = 0; k < threads; ++k)
-		workParts[size_t(k) + 1] += workParts[size_t(k)];
-	std::vector<long> next(workParts.begin(), workParts.end() - 1), inner(next.size()), shared(work.size());
-	for (int k = 0; k < threads; ++k)
-		inner[size_t(k)] = workBorders[size_t(k)] += workParts[size_t(k)];
-	reachedBy.assign(size_t(n) * words, 0);
-	for (const long i : work) {
-		const Slot& slot   = slots[i];
-		const int   k      = partOfBody(slot.id1);
-		const bool  border = reaches(slot, k);
-		shared[size_t(border ? next[size_t(k)]++ : inner[size_t(k)]++)] = i;
-		for (const Body::id_t id : { slot.id1, slot.id2 })
-			if (valid(id) && bodyPart[size_t(id)] != k) reachedBy[size_t(id) * words + size_t(k) / 64] |= uint64_t(1) << (k % 64);
-	}
-	work.swap(shared);
-	borders.resize(size_t(threads));
-	for (auto& byPart : borders) {
-		byPart.resize(size_t(threads));
-		for (auto& ids : byPart)
-			ids.clear();
-	}
-	sharedBodies.assign(size_t(n), 0);
-	for (long id = 0; id < n; ++id)
-		for (size_t w = 0; w < words; ++w)
-			for (uint64_t mask = reachedBy[size_t(id) * words + w]; mask != 0; mask &= mask - 1) {
-				borders[w * 64 + size_t(__builtin_ctzll(mask))][size_t(bodyPart[size_t(id)])].push_back(Body::id_t(id));
-				sharedBodies[size_t(id)] = 1;
-			}
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the
@@ -990,7 +716,7 @@ bool PendularLoop::store(const Record& rec, Interaction& I, const std::vector<Pa
 	geom.penetrationDepth = rec.penetrationDepth;
 	if (size_t(math::max(rec.id1, rec.id2)) < seen.size()) {
 		const Particle& p1 = seen[rec.id1];
-		geom.contactPoint  = contactPointOf(p1, rec.normal, rec.penetrationDepth);
+		geom.contactPoint  = pendular::contactPointOf(p1, rec.normal, rec.penetrationDepth);
 		geom.radius1       = p1.radius;
 		geom.radius2       = seen[rec.id2].radius;
 	} else if (make) { // a body that is gone: nothing to complete the new object from
@@ -1029,8 +755,8 @@ namespace {
 // Inlined into visit: one call per bridge-step saved (the pass is bound by its instructions, not memory).
 __attribute__((always_inline)) inline bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
 {
-	const Particle& p1     = particles[rec.id1];
-	const Particle& p2     = particles[rec.id2];
+	const Particle& p1     = snapshot.particles[rec.id1];
+	const Particle& p2     = snapshot.particles[rec.id2];
 	Vector3r        normal = p2.pos - p1.pos;
 	const Real      norm   = normal.norm();
 	normal /= norm;
@@ -1041,8 +767,8 @@ __attribute__((always_inline)) inline bool PendularLoop::recordStep(Record& rec,
                       inv.Vb, inv.wet, inv.forceInContact };
 	const Real        depth = p1.radius + p2.radius - norm;
 	// Separating: the shearInc of the last step in contact, which the objects keep while separated.
-	if (depth < 0 && rec.penetrationDepth >= 0) rec.shearInc = recordShearInc(rec, previous);
-	const Rotation rotation = sphereGeometry(geom, p1, p2, normal, depth, zero, zero, false, r, true, inv.tangensOfFrictionAngle > 0);
+	if (depth < 0 && rec.penetrationDepth >= 0) rec.shearInc = recordShearInc(rec, snapshot.previous);
+	const pendular::Rotation rotation = pendular::sphereGeometry(geom, p1, p2, normal, depth, zero, zero, false, *scene, r.ig2, true, inv.tangensOfFrictionAngle > 0);
 	return applyLaw(rec.id1, rec.id2, rec.isActive, geom, phys, r, zero, zero, rotation, thread);
 }
 
@@ -1071,7 +797,7 @@ void PendularLoop::settleRecords()
 			const shared_ptr<Interaction>& I = interactions[i];
 			load(records[index], I);
 			recordInteractions[index] = I;
-			slots[i].record           = index;
+			pairs.slots[i].record           = index;
 			withObjects.push_back(index);
 		}
 		list.clear();
@@ -1110,7 +836,7 @@ void PendularLoop::reconcile()
 {
 	auto&       container = *scene->interactions;
 	const long  size      = long(container.size());
-	slots.resize(size_t(size));
+	pairs.slots.resize(size_t(size));
 	const size_t n = records.size();
 	for (size_t index = 0; index < n; ++index) {
 		// The Interaction is read for its place only: a miss per record, overlapped by the prefetch.
@@ -1119,7 +845,7 @@ void PendularLoop::reconcile()
 		if (!I) continue;
 		const long at = I->linIx;
 		if (at >= 0 && at < size && container[at] == I) {
-			Slot& slot = slots[at];
+			Slot& slot = pairs.slots[at];
 			// Still in its slot (most are after a run of the collider): rewriting it would only count the
 			// weak reference down and up again.
 			if (slot.record == int(index) && slot.same(I) && slot.id1 == records[index].id1 && slot.id2 == records[index].id2) continue;
@@ -1147,24 +873,24 @@ void PendularLoop::sortInteractions()
 {
 	auto&        container = *scene->interactions;
 	const size_t n         = container.size();
-	slots.resize(n);
+	pairs.slots.resize(n);
 	std::vector<std::pair<uint64_t, size_t>> order(n); // key, entry before the sort
 	for (size_t i = 0; i < n; ++i) {
 		const auto& I = container[i];
-		if (!slots[i].same(I)) { // new since the last pass (reconcile has placed the records), the pass decides
-			slots[i]             = Slot {};
-			slots[i].interaction = I;
-			slots[i].id1         = I->getId1();
-			slots[i].id2         = I->getId2();
+		if (!pairs.slots[i].same(I)) { // new since the last pass (reconcile has placed the records), the pass decides
+			pairs.slots[i]             = Slot {};
+			pairs.slots[i].interaction = I;
+			pairs.slots[i].id1         = I->getId1();
+			pairs.slots[i].id2         = I->getId2();
 		}
-		order[i] = { slots[i].key(), i };
+		order[i] = { pairs.slots[i].key(), i };
 	}
 	sortByKey(order, uint64_t(scene->bodies->size()));
 	std::vector<shared_ptr<Interaction>> sorted(n);
 	std::vector<Slot>                    sortedSlots(n);
 	for (size_t k = 0; k < n; ++k) {
 		sorted[k]      = std::move(container[order[k].second]);
-		sortedSlots[k] = std::move(slots[order[k].second]);
+		sortedSlots[k] = std::move(pairs.slots[order[k].second]);
 	}
 	for (size_t k = 0; k < n; ++k) {
 		// Every Interaction gets its new place: a miss each, overlapped by the prefetch.
@@ -1172,7 +898,7 @@ void PendularLoop::sortInteractions()
 		container[k]        = std::move(sorted[k]);
 		container[k]->linIx = int(k);
 	}
-	slots.swap(sortedSlots);
+	pairs.slots.swap(sortedSlots);
 	++nSorts;
 	if (records.empty()) return;
 	std::vector<Record>                  ordered;
@@ -1181,7 +907,7 @@ void PendularLoop::sortInteractions()
 	orderedInteractions.reserve(records.capacity());
 	std::vector<bool> placed(records.size(), false);
 	for (size_t k = 0; k < n; ++k) {
-		Slot& slot = slots[k];
+		Slot& slot = pairs.slots[k];
 		if (!slot.recorded()) continue;
 		placed[slot.record] = true;
 		ordered.push_back(records[slot.record]);
@@ -1218,7 +944,7 @@ void PendularLoop::syncObjects(bool drop, bool all)
 			if (recordInteractions[index]) store(records[index], *recordInteractions[index]);
 	known.stale = false;
 	if (!drop) return;
-	workValid = false;
+	pairs.workValid = false;
 	records.clear();
 	recordInteractions.clear();
 	invariants.clear();
@@ -1228,46 +954,22 @@ void PendularLoop::syncObjects(bool drop, bool all)
 	withObjects.clear();
 	nWithObjects = 0;
 	nInvariants  = 0;
-	for (auto& slot : slots)
+	for (auto& slot : pairs.slots)
 		if (slot.recorded()) slot.record = Slot::none;
 }
 
 PendularLoop::~PendularLoop() { syncObjects(true, true); }
 
 namespace {
-	template <class T> long capacityBytes(const std::vector<T>& v) { return long(v.capacity() * sizeof(T)); }
-	template <class T> long capacityBytes(const std::vector<std::vector<T>>& v)
-	{
-		long bytes = long(v.capacity() * sizeof(std::vector<T>));
-		for (const auto& inner : v)
-			bytes += capacityBytes(inner);
-		return bytes;
-	}
 	template <class V> void freeVector(V& v) { V().swap(v); }
 } // namespace
 
 // Every array the loop holds for its scene, the one list heldBytes and freeArrays go through.
 template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, Visit&& visit)
 {
-	visit(loop.slots);
-	visit(loop.particles);
-	visit(loop.previous);
-	visit(loop.epoch);
-	visit(loop.sharedBodies);
-	visit(loop.work);
-	visit(loop.bodyParts);
-	visit(loop.workParts);
-	visit(loop.workBorders);
-	visit(loop.handOffs);
-	visit(loop.borders);
-	visit(loop.listed);
-	visit(loop.chunkEnds);
-	visit(loop.shareCost);
-	visit(loop.bodyPart);
-	visit(loop.reachedBy);
+	visit(loop.snapshot.particles);
+	visit(loop.snapshot.previous);
 	visit(loop.threadPace);
-	visit(loop.partCost);
-	visit(loop.paceTime);
 	visit(loop.threadForce);
 	visit(loop.threadTorque);
 	visit(loop.directParts);
@@ -1279,16 +981,16 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.withObjects);
 	visit(loop.toRecord);
 	visit(loop.toForget);
-	visit(loop.bodyPointers.states);
-	visit(loop.bodyPointers.bounds);
-	visit(loop.bodyPointers.parts);
+	visit(loop.snapshot.pointers.states);
+	visit(loop.snapshot.pointers.bounds);
+	visit(loop.snapshot.pointers.parts);
 }
 
 long PendularLoop::heldBytes() const
 {
 	long bytes = 0;
-	forEachArray(*this, [&bytes](const auto& v) { bytes += capacityBytes(v); });
-	return bytes;
+	forEachArray(*this, [&bytes](const auto& v) { bytes += pendular::capacityBytes(v); });
+	return bytes + pairs.heldBytes() + partition.heldBytes();
 }
 
 void PendularLoop::freeArrays()
@@ -1297,8 +999,9 @@ void PendularLoop::freeArrays()
 	invariantsIndex = {};
 	// As a new loop: the gathering starts an epoch (epoch is empty), the pass visits every entry.
 	known              = Known {};
-	workValid          = false;
-	bodyPointers.scene = nullptr;
+	pairs              = pendular::Pairs {};
+	partition          = pendular::WorkPartition {};
+	snapshot.pointers.scene = nullptr;
 }
 
 void PendularLoop::releaseScene(Scene* scene)
@@ -1326,7 +1029,7 @@ void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
 		// Its slot, unless the collider has moved it since the last pass (then a search).
 		long       index = -1;
 		const long at    = I->linIx;
-		if (at >= 0 && size_t(at) < loop->slots.size() && loop->slots[at].same(I) && loop->slots[at].recorded()) index = loop->slots[at].record;
+		if (at >= 0 && size_t(at) < loop->pairs.slots.size() && loop->pairs.slots[at].same(I) && loop->pairs.slots[at].recorded()) index = loop->pairs.slots[at].record;
 		for (size_t k = 0; index < 0 && k < loop->records.size(); ++k)
 			if (loop->recordInteractions[k] == I) index = long(k);
 		if (index < 0 || loop->recordInteractions[index] != I) continue;
@@ -1346,7 +1049,7 @@ void PendularLoop::syncScene(Scene* scene, bool drop, bool all)
 		if (!loop) continue;
 		// Whatever may have changed the container (drop) ends the list of entries to visit, also
 		// without records and from another thread (an atomic flag).
-		if (drop) loop->workValid = false;
+		if (drop) loop->pairs.workValid = false;
 		if (loop->liveRecords() == 0) continue;
 		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) {
 			// The objects that Python holds keep their last values; nothing may make or write them now.
@@ -1369,7 +1072,7 @@ boost::python::dict PendularLoop::memory() const
 	d["PendularPhys"]  = sizeof(PendularPhys);
 	d["ViscElCapPhys"] = sizeof(ViscElCapPhys);
 	d["particle"]      = 2 * sizeof(Particle); // this step's and the last one's (see previous)
-	d["epoch"]         = sizeof(Near);
+	d["epoch"]         = sizeof(pendular::Near);
 	d["slot"]          = sizeof(Slot);
 	d["record"]        = sizeof(Record) + sizeof(shared_ptr<Interaction>); // with its entry of recordInteractions
 	d["invariants"]    = sizeof(Invariants) + sizeof(PendularPhys); // once per distinct set of bridge and contact parameters, with its prototype
@@ -1381,9 +1084,9 @@ void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, Cou
 {
 	const Body::id_t id1 = I->getId1(), id2 = I->getId2();
 	if (removeUnseen && !I->isReal() && I->iterLastSeen < scene->iter) return;
-	const Particle* p1 = size_t(id1) < particles.size() ? &particles[id1] : nullptr;
-	const Particle* p2 = size_t(id2) < particles.size() ? &particles[id2] : nullptr;
-	if (!p1 || !p2 || p1->kind == missing || p2->kind == missing) {
+	const Particle* p1 = size_t(id1) < snapshot.particles.size() ? &snapshot.particles[id1] : nullptr;
+	const Particle* p2 = size_t(id2) < snapshot.particles.size() ? &snapshot.particles[id2] : nullptr;
+	if (!p1 || !p2 || p1->kind == Particle::missing || p2->kind == Particle::missing) {
 		scene->interactions->requestErase(I);
 		return;
 	}
@@ -1392,8 +1095,8 @@ void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, Cou
 		scene->interactions->requestErase(I);
 		return;
 	}
-	if (p1->kind == clump || p2->kind == clump) return;
-	if (r.fused && p1->kind == pendularSphere && p2->kind == pendularSphere) {
+	if (p1->kind == Particle::clump || p2->kind == Particle::clump) return;
+	if (r.fused && p1->kind == Particle::pendularSphere && p2->kind == Particle::pendularSphere) {
 		++c.fused;
 		sphereSphere(I, r, c.thread);
 	} else {
@@ -1404,8 +1107,8 @@ void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, Cou
 
 void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread)
 {
-	const Particle& p1 = particles[I->getId1()];
-	const Particle& p2 = particles[I->getId2()];
+	const Particle& p1 = snapshot.particles[I->getId1()];
+	const Particle& p2 = snapshot.particles[I->getId2()];
 	const Vector3r  shift2 = scene->isPeriodic ? Vector3r(cellHsize * I->cellDist.cast<Real>()) : Vector3r::Zero();
 	Vector3r        normal = (p2.pos + shift2) - p1.pos;
 	const Real      sumR   = p1.radius + p2.radius, reach = p1.reach + p2.reach;
@@ -1427,7 +1130,7 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 		return;
 	}
 	const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
-	const Rotation rotate   = sphereGeometry(geom, p1, p2, normal, depth, shift2, shiftVel, isNew, r);
+	const pendular::Rotation rotate = pendular::sphereGeometry(geom, p1, p2, normal, depth, shift2, shiftVel, isNew, *scene, r.ig2);
 	if (!I->phys) {
 		const auto& b1 = Body::byId(I->getId1(), scene);
 		const auto& b2 = Body::byId(I->getId2(), scene);
@@ -1441,68 +1144,21 @@ void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved
 	callbacksOn(*I, r);
 }
 
-template <class Geom>
-PendularLoop::Rotation PendularLoop::sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth,
-                                                    const Vector3r& shift2, const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record,
-                                                    bool friction) const
-{
-	geom.penetrationDepth = depth;
-	// A frictionless record: the law reads the gap and the normal only (the contact point and the radii
-	// of its objects follow from the bodies, see store).
-	if (record && !friction) {
-		geom.normal = normal;
-		return Rotation {};
-	}
-	geom.contactPoint = contactPointOf(p1, normal, depth);
-	geom.radius1      = p1.radius;
-	geom.radius2      = p2.radius;
-	Rotation axes;
-	if (depth >= 0 || isNew) { // in contact: what the law's tangential spring reads
-		if (!isNew) {
-			axes.orthonormalAxis = geom.normal.cross(normal);
-			const Real angle     = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
-			axes.twistAxis       = angle * geom.normal;
-		}
-		geom.normal = normal;
-		if (!record)
-			geom.shearInc = shearIncrement(p1, p2, normal, depth, geom.contactPoint, shift2, shiftVel, r.ig2->avoidGranularRatcheting, scene->dt);
-	} else
-		geom.normal = normal; // a separated bridge: the gap and the normal only
-	return axes;
-}
-
-Vector3r PendularLoop::shearIncrement(const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& contactPoint,
-                                      const Vector3r& shift2, const Vector3r& shiftVel, bool ratcheting, Real dt)
-{
-	Vector3r relVel;
-	if (ratcheting) {
-		const Real alpha = (p1.radius + p2.radius) / (p1.radius + p2.radius - depth);
-		relVel           = (p2.vel - p1.vel) * alpha + p2.angVel.cross(-p2.radius * normal) - p1.angVel.cross(p1.radius * normal);
-		relVel += alpha * shiftVel;
-	} else {
-		const Vector3r c1x = contactPoint - p1.pos, c2x = contactPoint - (p2.pos + shift2);
-		relVel             = (p2.vel + p2.angVel.cross(c2x)) - (p1.vel + p1.angVel.cross(c1x));
-		relVel += shiftVel;
-	}
-	relVel = relVel - normal.dot(relVel) * normal;
-	return relVel * dt;
-}
-
 Vector3r PendularLoop::recordShearInc(const Record& rec, const std::vector<Particle>& seen) const
 {
 	if (!(rec.penetrationDepth >= 0) || size_t(math::max(rec.id1, rec.id2)) >= seen.size()) return rec.shearInc;
 	const Particle& p1           = seen[rec.id1];
-	const Vector3r  contactPoint = contactPointOf(p1, rec.normal, rec.penetrationDepth);
+	const Vector3r  contactPoint = pendular::contactPointOf(p1, rec.normal, rec.penetrationDepth);
 	const Vector3r  zero         = Vector3r::Zero();
-	return shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, known.seenRatcheting, known.seenDt);
+	return pendular::shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, known.seenRatcheting, known.seenDt);
 }
 
 template <class Geom, class Phys, class Rotate>
 bool PendularLoop::applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const Geom& geom, Phys& phys, const Resolved& r, const Vector3r& shift2,
                             const Vector3r& shiftVel, const Rotate& rotate, int thread)
 {
-	const Particle&          p1 = particles[id1];
-	const Particle&          p2 = particles[id2];
+	const Particle&          p1 = snapshot.particles[id1];
+	const Particle&          p2 = snapshot.particles[id2];
 	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
 		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), id1, id2 };
 	ThreadSink               sink { directParts[size_t(thread)], threadForce[thread].data(), threadTorque[thread].data(), id1, id2, isActive };
@@ -1574,7 +1230,7 @@ void PendularLoop::handOverBorders(int thread, const pendular::SummedArrays& sum
 {
 	for (size_t k = 0; k < threadForce.size(); ++k) {
 		if (int(k) == thread) continue;
-		for (const Body::id_t id : borders[k][size_t(thread)]) {
+		for (const Body::id_t id : partition.borders[k][size_t(thread)]) {
 			Vector3r &f = threadForce[k][id], &t = threadTorque[k][id];
 			if (f != Vector3r::Zero()) summed.forces[id] += f;
 			if (t != Vector3r::Zero()) summed.torques[id] += t;
@@ -1592,7 +1248,7 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct, bool borde
 	// pass added the forces of its part of the bodies straight into the summed arrays (see ThreadSink),
 	// which cover every body (the pass's addMaxId and sync).
 	ForceContainer& forces = scene->forces;
-	const long      n      = long(particles.size());
+	const long      n      = long(snapshot.particles.size());
 	if (n == 0) return;
 	forces.sync();
 	const long arrays = long(threadForce.size());
@@ -1626,11 +1282,11 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct, bool borde
 	// every array from the core that zeroed it to the other one at every step). In one thread the sum per
 	// body is that of InteractionLoop's: the thread's sum.
 #ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies)
+#pragma omp parallel num_threads(threads) if (long(snapshot.particles.size()) >= parallelBodies)
 #endif
 	{
 		const int  thread  = pendular::threadNumber();
-		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
+		const auto part    = pendular::partOf(partition.bodyParts, n, thread, pendular::teamSize());
 		const bool byParts = parted && pendular::teamSize() == arrays;
 		if (thread == 0) known.flushTeam = pendular::teamSize();
 		if (arrays == 1) // one thread's arrays: no other to look into
@@ -1645,7 +1301,7 @@ void PendularLoop::flushForces(int threads, bool parted, bool direct, bool borde
 			if (byParts)
 				for (long k = 0; k < arrays; ++k)
 					if (k != thread) {
-						const auto& ids = borders[size_t(k)][size_t(thread)];
+						const auto& ids = partition.borders[size_t(k)][size_t(thread)];
 						next[size_t(k)] = ids.data();
 						last[size_t(k)] = ids.data() + ids.size();
 					}

@@ -1,6 +1,10 @@
 // PendularLoop: YADE's InteractionLoop with a fused pass for the interactions of yade-capillary.
 #pragma once
 
+#include "LoopBodies.hpp"
+#include "LoopGeometry.hpp"
+#include "LoopPairs.hpp"
+#include "LoopPartition.hpp"
 #include "Passes.hpp"
 #include "Pendular.hpp"
 #include <core/InteractionLoop.hpp>
@@ -18,37 +22,7 @@ namespace yade {
 
 class PendularLoop : public InteractionLoop {
 public:
-	// What the fused pass needs of one body, gathered once per step into a contiguous array
-	// (instead of two shared_ptr hops to a State per interaction). Two whole cache lines: what every
-	// bridge-step and every check of a potential pair reads (position, velocity, radius, subdomain,
-	// kind) in the first, what only friction and films read in the second; whole lines, so that the
-	// bodies that other threads read can be written with streaming stores (see gather).
-	struct alignas(64) Particle {
-		Vector3r pos, vel;
-		Real     radius;
-		int      subdomain;
-		uint8_t  kind;
-		Vector3r angVel;
-		Real     reach; // film thickness of a sphere whose bridges form when the films touch (formation='films'), else 0
-		// Takes p's values, writing each line only if it changes: a body that does not move costs a read, and
-		// the second line of a sphere that does not spin (frictionless) is not written. (A line that another
-		// thread read in the last pass is written only after that core's copy is invalidated.)
-		void update(const Particle& p)
-		{
-			if (!(pos == p.pos && vel == p.vel && radius == p.radius && subdomain == p.subdomain && kind == p.kind)) {
-				pos       = p.pos;
-				vel       = p.vel;
-				radius    = p.radius;
-				subdomain = p.subdomain;
-				kind      = p.kind;
-			}
-			if (!(angVel == p.angVel && reach == p.reach)) {
-				angVel = p.angVel;
-				reach  = p.reach;
-			}
-		}
-	};
-	enum Kind : uint8_t { missing, other, clump, pendularSphere, pendularBoundary };
+	using Particle = pendular::Particle;
 
 	// A sphere-sphere interaction with a fixed-volume inviscid bridge (or none), between two steps:
 	// what a step changes of ScGeom and PendularPhys, under their names, in two cache lines, so that a
@@ -116,7 +90,7 @@ public:
 	static bool readersGuarded;
 	static void guardReaders() { readersGuarded = true; }
 	// What this step's gathering read of every body (see pendular::BodyPointers).
-	const pendular::BodyPointers& gatheredBodies() const { return bodyPointers; }
+	const pendular::BodyPointers& gatheredBodies() const { return snapshot.pointers; }
 	// What one thread of the pass adds straight into the force container's summed arrays: the forces and
 	// torques of the bodies [first, last), its part (see ThreadSink in PendularLoop.cpp).
 	struct DirectPart {
@@ -127,7 +101,7 @@ public:
 	// The threads of the last hand-over of the forces into the force container (0: none yet) and their parts
 	// of the bodies (see pendular::partOf): PendularForceResetter zeroes each part in the thread that wrote it.
 	int                      flushTeam() const { return known.flushTeam; }
-	const std::vector<long>& flushParts() const { return bodyParts; }
+	const std::vector<long>& flushParts() const { return partition.bodyParts; }
 	// The force container's reset of this step, to be done by the gathering (each thread zeroes its part of the
 	// bodies), from PendularForceResetter when only colliders run between them (which leave the force container
 	// alone); summed: the container's summed arrays, size: their entries.
@@ -147,36 +121,8 @@ private:
 	void visit(long i, long ahead1, long ahead2, const Resolved& r, bool skipApart, bool recording, Counts& c);
 	void step(const shared_ptr<Interaction>& I, const Resolved& r, Counts& c);
 	long colliderRunCount() const;
-	void buildWork(bool use, long colliderRuns, int threads);
-	void shareWork(int threads);
 	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
-	// ScGeom::rotate's rotation of the shear force from the last normal to this one (its axes are
-	// private to ScGeom: kept here, and used by the law).
-	struct Rotation {
-		Vector3r orthonormalAxis = Vector3r::Zero(), twistAxis = Vector3r::Zero();
-		void     operator()(Vector3r& v) const
-		{
-			v -= v.cross(orthonormalAxis);
-			v -= v.cross(twistAxis);
-		}
-	};
-	// Ig2_Sphere_Sphere_ScGeom and ScGeom::precompute after the distance, in their order of
-	// operations, on an ScGeom or a Record: `normal` the unit vector from centre 1 to centre 2, `depth`
-	// the overlap.
-	// record: the geometry of a Record, whose shearInc is made only when read (see shearIncrement); without
-	// friction the law reads only its gap and normal (no contact point, no rotation axes).
-	template <class Geom>
-	Rotation sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& shift2,
-	                        const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record = false, bool friction = true) const;
-	// ScGeom::shearInc of two spheres in contact as Ig2_Sphere_Sphere_ScGeom makes it (ScGeom::precompute),
-	// from the bodies as a step saw them, the normal, overlap and contact point of that step, and its
-	// Ig2's avoidGranularRatcheting and time step. A record keeps shearInc only while its bridge is
-	// separated (the value of its last step in contact, where Ig2 last updated it): in contact the law
-	// never reads it (it computes the relative velocity itself), so it is made from the bodies when the
-	// objects are (store), and kept when the bridge separates (recordStep, from the step before).
-	static Vector3r shearIncrement(const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& contactPoint,
-	                               const Vector3r& shift2, const Vector3r& shiftVel, bool ratcheting, Real dt);
 	// The shearInc of a record as of its last step, from `seen`, the particles that step read.
 	Vector3r recordShearInc(const Record& rec, const std::vector<Particle>& seen) const;
 	// Our law, inline, on the gathered data, into the thread's force arrays; false: reset the interaction.
@@ -187,14 +133,7 @@ private:
 	bool recordStep(Record& rec, const Resolved& r, int thread);
 	bool recordable(const Interaction& I, const Resolved& r) const;
 	// A body that records may join: a PendularMat sphere of this scene's subdomain (as gathered this step).
-	bool sphereHere(Body::id_t id) const
-	{
-		const Particle& p = particles[id];
-		return p.kind == pendularSphere && p.subdomain == scene->subdomain;
-	}
-	// Ig2_Sphere_Sphere_ScGeom's contact point: from the centre of body 1 along the normal, at its radius
-	// less half the overlap.
-	static Vector3r contactPointOf(const Particle& p1, const Vector3r& normal, Real depth) { return p1.pos + (p1.radius - 0.5 * depth) * normal; }
+	bool sphereHere(Body::id_t id) const { return snapshot.sphereHere(id, scene->subdomain); }
 	void load(Record& rec, const shared_ptr<Interaction>& I);
 	int  invariantsOf(const PendularPhys& phys);
 	static std::string invariantsKey(const PendularPhys& phys);
@@ -207,7 +146,7 @@ private:
 	// placeholders; true if they were made.
 	// seen: the particles of the record's last step (particles between two steps; previous during a pass).
 	bool store(const Record& rec, Interaction& I, const std::vector<Particle>& seen) const;
-	bool store(const Record& rec, Interaction& I) const { return store(rec, I, particles); }
+	bool store(const Record& rec, Interaction& I) const { return store(rec, I, snapshot.particles); }
 	void syncObjects(bool drop, bool all);
 	void freeArrays();
 	template <class Loop, class Visit> static void forEachArray(Loop& loop, Visit&& visit);
@@ -232,109 +171,14 @@ private:
 	// zeroes those entries.
 	void handOverBorders(int thread, const pendular::SummedArrays& summed);
 
-	// Per entry of the interaction container, what the last step saw: the interaction, its ids and
-	// whether it was potential. Held by a weak_ptr and compared by owner (control block), not by
-	// address: a new interaction allocated where an erased one was is still another owner.
-	struct Slot {
-		boost::weak_ptr<Interaction> interaction;
-		Body::id_t                   id1 = 0, id2 = 0;
-		// >= 0: index in records; none: a real interaction without record (or not yet seen); potentialPair.
-		int record = none;
-		// potentialPair: a lower bound of the surface gap minus 2 epochDisplacement at the start of the
-		// epoch [m] (see gather), -inf if unknown; rounded down to float to keep the slot at 32 B.
-		float                gapBound = -std::numeric_limits<float>::infinity();
-		static constexpr int none = -1, potentialPair = -2;
-		bool                 potential() const { return record == potentialPair; }
-		bool                 recorded() const { return record >= 0; }
-		bool same(const shared_ptr<Interaction>& I) const { return !interaction.owner_before(I) && !I.owner_before(interaction); }
-		// The order of sortInteractions: by id1, then id2 (ids are >= 0).
-		uint64_t key() const { return (uint64_t(uint32_t(id1)) << 32) | uint32_t(id2); }
-	};
-	std::vector<Slot>                  slots;
-	bool                               removeUnseen = false;
-	std::vector<Particle>              particles;
-	// The particles of the pass before (gather swaps the two arrays): with Known::seenDt and
-	// seenRatcheting, what the shearInc of a record in contact follows from (shearIncrement).
-	std::vector<Particle>              previous;
-	pendular::BodyPointers             bodyPointers;
-	// A body as the check of a potential pair sees it: the centre and the radius plus the reach, signed:
-	// > 0 a PendularMat sphere of this subdomain, < 0 (negated) one of another subdomain, 0 any other body.
-	// films: some sphere has a reach (else it is 0 and not read: it is on the particle's second line).
-	struct Near {
-		Vector3r pos;
-		Real     radius;
-	};
-	static Near nearOf(const Particle& p, int subdomain, bool films)
-	{
-		if (p.kind != pendularSphere) return Near { Vector3r::Zero(), 0 };
-		const Real r = films ? p.radius + p.reach : p.radius;
-		return Near { p.pos, p.subdomain == subdomain ? r : -r };
-	}
-	// The bodies as of the start of the epoch of the bound on potential pairs' gaps (see gather).
-	std::vector<Near>                  epoch;
-	// Per body: reached by the entries of another thread's part of the list (see shareWork), so gathered
-	// with streaming stores (see gather); empty: none.
-	std::vector<uint8_t>               sharedBodies;
-	// The container entries a pass of this epoch may have to visit (see buildWork; valid: Known says
-	// what for). Atomic: the wrapped Python paths drop it from other threads.
-	std::vector<long>                  work;
-	// What a full pass lists for work: per thread, the entries it listed; per chunk of the pass's schedule,
-	// the thread that visited it and the end of the chunk's entries in that thread's list (see buildWork).
-	struct ChunkEnd {
-		int  thread = 0;
-		long end    = 0;
-	};
-	std::vector<std::vector<long>> listed;
-	std::vector<ChunkEnd>          chunkEnds;
-	// A potential pair that a pass of this epoch skips: its bound on the gap exceeds `threshold`, twice the
-	// largest move of the epoch (see buildWork). Asked of a slot just visited, which holds its entry's
-	// interaction (visit makes it so).
-	static bool listedOut(const Slot& slot, Real threshold) { return slot.potential() && Real(slot.gapBound) >= threshold; }
-	std::atomic<bool>                  workValid { false };
-	// The threads' parts of the bodies and of work (see shareWork; empty: even parts); borders[k][t]: the
-	// bodies of part t that the entries of part k reach (ascending). Part k of work lists first its entries
-	// that reach another part, up to workBorders[k], then those within the part.
-	std::vector<long>                                bodyParts, workParts, workBorders;
-	// Per thread of a pass on the list by parts, the last pass (handOffPass) whose entries that reach other
-	// parts it has computed: the owners of those bodies then hand them over (handOverBorders) while it
-	// computes the rest of its part. One cache line each: the others spin on it.
-	struct alignas(64) HandOff {
-		std::atomic<long> pass { 0 };
-	};
-	std::vector<HandOff> handOffs; // made whole for a team (HandOff is not movable), never resized
-	long                 handOffPass = 0;
-	std::vector<std::vector<std::vector<Body::id_t>>> borders;
-	// What shareWork computes them from, kept between its calls: each body's estimated cost and part, and
-	// the parts whose entries reach it from another part (a bit per part).
-	std::vector<float>                               shareCost;
-	std::vector<int>                                 bodyPart;
-	std::vector<uint64_t>                            reachedBy;
-	// Each thread's pace (threadPace) is measured in the passes on the list since the last shareWork: the wall
-	// time of its own entries and of its hand-over where the pass does it (partsReady), without its waits
-	// (paceTime, over paceSteps passes), per unit of the estimated cost of its part (partCost).
-	std::vector<float>     partCost;
-	std::vector<double>    paceTime;
-	long                   paceSteps    = 0;
-	static constexpr long  minPaceSteps = 8;  // passes measured before a share follows them
-	static constexpr Real  maxPace      = 4;  // at most this many times the others' (a thread held up by others' processes)
+	using Slot = pendular::Slot;
+	pendular::Pairs         pairs;
+	pendular::WorkPartition partition;
+	bool                    removeUnseen = false;
+	pendular::BodySnapshot  snapshot;
 	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
 	// freed (freeArrays) starts again from these values, as a new loop.
 	struct Known {
-		// The bound on potential pairs' gaps (see gather): the largest distance a body has moved since
-		// the start of the epoch [m], the smallest sphere radius of the epoch [m] and the epoch's number;
-		// fullCheck: every potential pair is checked this step.
-		Real epochDisplacement = 0, epochRmin = 0;
-		long epochCount        = 0;
-		bool fullCheck         = true;
-		// epochPending: the last pass started an epoch, whose bodies the next gathering takes from the particles
-		// of that pass (previous); films: some sphere gathered by the last gathering has a film's reach.
-		bool epochPending = false, films = false;
-		// No body's kind or subdomain changed since the last pass (the records' bodies then need no check).
-		bool bodiesKept = false;
-		// What work was built for: the epoch, the collider's runs, the container and its size.
-		long                        workEpoch = -1, workColliderRuns = -1;
-		const InteractionContainer* workContainer = nullptr;
-		size_t                      workSize      = 0;
 		// The collider's runs and the container the slots of the records were last matched to (reconcile).
 		long                        reconciledRuns      = -1;
 		const InteractionContainer* reconciledContainer = nullptr;
@@ -361,9 +205,6 @@ private:
 		long                   size = 0;
 	};
 	PendingReset pendingReset;
-	// A potential pair apart by the bound alone: its gap at its last check, less what the bodies can have
-	// moved since, is still positive (see gather), so nothing of it is read but the slot.
-	bool apartByBound(const Slot& slot) const { return !known.fullCheck && slot.gapBound > 2 * known.epochDisplacement; }
 	// Per OpenMP thread, per body id; zero between steps (the flush zeroes what it read, see Known::forcesPending).
 	std::vector<std::vector<Vector3r>> threadForce, threadTorque;
 	std::vector<DirectPart>            directParts; // per OpenMP thread of the pass
