@@ -80,16 +80,15 @@ namespace {
 	}
 	bool holdsPlaceholders(const Interaction& I) { return I.geom == placeholderGeom(); }
 
-	// Forces of the fused pass: a thread adds those of the bodies of its part straight into the force
-	// container's summed arrays (no other thread writes them), the others into its own arrays indexed by
-	// body id, handed over once per body at the end of the step (PendularLoop::flushForces). In one
-	// thread the sums are those of InteractionLoop, in the same order: the summed entries start from
-	// zero (ForceResetter) as InteractionLoop's per-thread ones do, unless an engine between them added forces.
+	// The force and torques of one interaction, into its thread's direct part or arrays (see
+	// pendular::ForceAccumulator). In this unnamed namespace: the law's apply instantiated with it has
+	// internal linkage, so that GCC inlines it into the pass (as a function with external linkage, it
+	// stays a call per bridge-step).
 	struct ThreadSink {
-		const PendularLoop::DirectPart& direct;
-		Vector3r *                      forces, *torques;
-		Body::id_t                      id1, id2;
-		bool                            enabled; // Interaction::isActive
+		const pendular::DirectPart& direct;
+		Vector3r *        forces, *torques;
+		Body::id_t        id1, id2;
+		bool              enabled; // Interaction::isActive
 		__attribute__((always_inline)) Vector3r& forceOf(Body::id_t id) const { return direct.has(id) ? direct.forces[id] : forces[id]; }
 		__attribute__((always_inline)) Vector3r& torqueOf(Body::id_t id) const { return direct.has(id) ? direct.torques[id] : torques[id]; }
 		// Inlined: called once per bridge-step, a call cost more than the six additions.
@@ -110,6 +109,7 @@ namespace {
 			if (enabled) force1(f);
 		}
 	};
+
 } // namespace
 
 // The functors YADE's dispatchers choose for two PendularMat spheres, resolved once per step with
@@ -145,17 +145,7 @@ void PendularLoop::gather(int threads)
 	const auto&  bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
 	const size_t n      = bodies.size();
 	snapshot.begin(n, partition.bodyParts);
-	for (auto& f : threadForce)
-		f.resize(n, Vector3r::Zero());
-	for (auto& t : threadTorque)
-		t.resize(n, Vector3r::Zero());
-	// Zeroed by the flush after it read them (see flushForces), unless a step ended before its flush.
-	if (known.forcesPending)
-		for (size_t k = 0; k < threadForce.size(); ++k) {
-			std::fill(threadForce[k].begin(), threadForce[k].end(), Vector3r::Zero());
-			std::fill(threadTorque[k].begin(), threadTorque[k].end(), Vector3r::Zero());
-		}
-	known.forcesPending = false;
+	forceSums.fitBodies(n);
 	// The gap bound's check of every body (see Pairs), in the same pass as the gathering. The bodies of an
 	// epoch are those of the pass that started it: taken here, by each thread for its part, from that pass's
 	// particles (previous), instead of copied by one thread after it. (A reduction's private copies start at
@@ -166,10 +156,7 @@ void PendularLoop::gather(int threads)
 	// The force container's reset handed over by PendularForceResetter (takeReset): each thread zeroes the
 	// summed forces and torques of its part of the bodies below (the cache lines it writes in the pass and
 	// reads in PendularIntegrator), the entries of no body after it.
-	const bool                   resetting = pendingReset.scene == scene && pendingReset.iter == scene->iter;
-	const long                   resetSize = pendingReset.size;
-	const pendular::SummedArrays reset     = resetting ? pendingReset.summed : pendular::SummedArrays {};
-	pendingReset                           = PendingReset {};
+	const pendular::ForceReset reset = forceSums.takeReset(scene, scene->iter);
 	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
 	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
 	int                    kindsChanged = 0, clumps = 0, aspherical = 0, subdomains = 0;
@@ -182,10 +169,7 @@ void PendularLoop::gather(int threads)
 #endif
 	{
 	const auto part = pendular::partOf(partition.bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
-	if (reset.forces) {
-		pendular::zeroEntries(reset.forces, part.first, part.second);
-		pendular::zeroEntries(reset.torques, part.first, part.second);
-	}
+	reset.zero(part.first, part.second);
 	// The bodies that other threads' entries reach (sharedBodies, made by shareWork for these parts): see streamStore.
 	const bool streaming = partition.sharedBodies.size() == n;
 	bool       streamed  = false;
@@ -207,10 +191,7 @@ void PendularLoop::gather(int threads)
 	}
 	if (streamed) pendular::streamFence(); // before the region's barrier, after which other threads read them
 	}
-	if (reset.forces) {
-		pendular::zeroEntries(reset.forces, long(n), resetSize);
-		pendular::zeroEntries(reset.torques, long(n), resetSize);
-	}
+	reset.zero(long(n), reset.size);
 	snapshot.finish(scene, scene->iter, clumps, aspherical, subdomains);
 	snapshot.kindsKept = !kindsChanged;
 	pairs.endScan(restart, films, math::sqrt(move2), rmin);
@@ -255,8 +236,7 @@ void PendularLoop::action()
 		sortTime += ns(ts, Clock::now());
 	}
 	sortPending = false;
-	threadForce.resize(threads);
-	threadTorque.resize(threads);
+	forceSums.useThreads(threads);
 	gather(threads); // also zeroes the force arrays after a step that ended before its flush
 	// The force container covers every body and its per-thread entries are summed (addMaxId, sync): the
 	// pass adds the forces of each thread's part of the bodies into its summed arrays (see ThreadSink).
@@ -266,7 +246,7 @@ void PendularLoop::action()
 		scene->forces.sync();
 	}
 	const pendular::SummedArrays summed = pendular::summedArrays(scene->forces, bodies);
-	directParts.assign(size_t(threads), DirectPart {});
+	forceSums.direct.assign(size_t(threads), pendular::DirectPart {});
 	const auto t1 = Clock::now();
 
 	// As InteractionLoop: with a collider that does not erase interactions itself, the potential
@@ -279,7 +259,7 @@ void PendularLoop::action()
 	toRecord.resize(threads);
 	toForget.resize(threads);
 	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
-	known.forcesPending  = true; // until the flush has read and zeroed the force arrays
+	forceSums.pending    = true; // until the flush has read and zeroed the force arrays
 	// Between two runs of the collider and within one epoch of the bound on potential pairs' gaps
 	// (see gather), the container is the one of the last pass, and a potential pair whose bound exceeds
 	// what the bodies can move in the whole epoch is skipped at every step: the pass visits only the
@@ -332,7 +312,7 @@ void PendularLoop::action()
 		teamComplete = pendular::teamSize() == threads;
 		if (summed.forces) {
 			const auto part              = pendular::partOf(partition.bodyParts, bodies, c.thread, pendular::teamSize());
-			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
+			forceSums.direct[size_t(c.thread)] = pendular::DirectPart { summed.forces, summed.torques, part.first, part.second };
 		}
 		if (fast) {
 			const auto started = Clock::now();
@@ -369,7 +349,7 @@ void PendularLoop::action()
 					if (k != c.thread && !partition.borders[size_t(k)][size_t(c.thread)].empty())
 						pendular::waitFor(partition.handOffs[k].pass, handOffAt);
 				const auto handing0 = Clock::now();
-				handOverBorders(c.thread, summed);
+				forceSums.handOverBorders(c.thread, summed, partition.borders);
 				busy += Clock::now() - handing0;
 			}
 			const Real busyNs = Real(std::chrono::duration_cast<std::chrono::nanoseconds>(busy).count());
@@ -428,7 +408,8 @@ void PendularLoop::action()
 		partition.share(pairs.work, pairs.slots, long(snapshot.particles.size()), threads, threadPace);
 	known.stale   = liveRecords() > 0;
 	const auto t2 = Clock::now();
-	flushForces(threads, parted, summed.forces != nullptr, partsReady && teamComplete);
+	forceSums.flush(scene->forces, long(snapshot.particles.size()), threads, parallelBodies, parted, summed.forces != nullptr, partsReady && teamComplete,
+	                partition.bodyParts, partition.borders);
 	gatherTime += ns(t0, t1);
 	passTime += ns(t1, t2);
 	flushTime += ns(t2, Clock::now());
@@ -456,9 +437,8 @@ void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bo
 			if (size_t(math::max(ahead.id1, ahead.id2)) < snapshot.particles.size()) {
 				prefetchObject(&snapshot.particles[ahead.id1]);
 				prefetchObject(&snapshot.particles[ahead.id2]);
-				const DirectPart& direct = directParts[size_t(c.thread)];
-				__builtin_prefetch(direct.has(ahead.id1) ? &direct.forces[ahead.id1] : &threadForce[c.thread][ahead.id1], 1);
-				__builtin_prefetch(direct.has(ahead.id2) ? &direct.forces[ahead.id2] : &threadForce[c.thread][ahead.id2], 1);
+				forceSums.prefetch(c.thread, ahead.id1);
+				forceSums.prefetch(c.thread, ahead.id2);
 			}
 		} else if (ahead.record == Slot::none) {
 			const auto& J = interactions[ahead1];
@@ -970,9 +950,6 @@ template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, V
 	visit(loop.snapshot.particles);
 	visit(loop.snapshot.previous);
 	visit(loop.threadPace);
-	visit(loop.threadForce);
-	visit(loop.threadTorque);
-	visit(loop.directParts);
 	visit(loop.records);
 	visit(loop.recordInteractions);
 	visit(loop.invariants);
@@ -990,7 +967,7 @@ long PendularLoop::heldBytes() const
 {
 	long bytes = 0;
 	forEachArray(*this, [&bytes](const auto& v) { bytes += pendular::capacityBytes(v); });
-	return bytes + pairs.heldBytes() + partition.heldBytes();
+	return bytes + pairs.heldBytes() + partition.heldBytes() + forceSums.heldBytes();
 }
 
 void PendularLoop::freeArrays()
@@ -1001,6 +978,7 @@ void PendularLoop::freeArrays()
 	known              = Known {};
 	pairs              = pendular::Pairs {};
 	partition          = pendular::WorkPartition {};
+	forceSums          = pendular::ForceAccumulator {};
 	snapshot.pointers.scene = nullptr;
 }
 
@@ -1161,7 +1139,7 @@ bool PendularLoop::applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const
 	const Particle&          p2 = snapshot.particles[id2];
 	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
 		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), id1, id2 };
-	ThreadSink               sink { directParts[size_t(thread)], threadForce[thread].data(), threadTorque[thread].data(), id1, id2, isActive };
+	ThreadSink sink { forceSums.direct[size_t(thread)], forceSums.force[thread].data(), forceSums.torque[thread].data(), id1, id2, isActive };
 	return r.law->apply(geom, phys, k, scene->dt, rotate, sink);
 }
 
@@ -1224,103 +1202,6 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 		keep = I->functorCache.constLaw->go(I->geom, I->phys, I.get());
 	if (!keep) scene->interactions->requestErase(I);
 	if (I->isReal()) callbacksOn(*I, r);
-}
-
-void PendularLoop::handOverBorders(int thread, const pendular::SummedArrays& summed)
-{
-	for (size_t k = 0; k < threadForce.size(); ++k) {
-		if (int(k) == thread) continue;
-		for (const Body::id_t id : partition.borders[k][size_t(thread)]) {
-			Vector3r &f = threadForce[k][id], &t = threadTorque[k][id];
-			if (f != Vector3r::Zero()) summed.forces[id] += f;
-			if (t != Vector3r::Zero()) summed.torques[id] += t;
-			f = t = Vector3r::Zero();
-		}
-	}
-}
-
-void PendularLoop::flushForces(int threads, bool parted, bool direct, bool bordersDone)
-{
-	// Into the force container's summed arrays, not through addForce: addForce writes the container's
-	// shared flag and its per-thread maximum ids at every call, and two threads doing so contend for those
-	// cache lines (it doubled this phase on two threads). sync() first adds what the dispatched functors
-	// of this pass added through addForce (as the integrator's sync would). direct: each thread of the
-	// pass added the forces of its part of the bodies straight into the summed arrays (see ThreadSink),
-	// which cover every body (the pass's addMaxId and sync).
-	ForceContainer& forces = scene->forces;
-	const long      n      = long(snapshot.particles.size());
-	if (n == 0) return;
-	forces.sync();
-	const long arrays = long(threadForce.size());
-	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays;
-	// several whose pass handed the borders over (bordersDone): nothing left in theirs.
-	if (direct && (arrays == 1 || bordersDone)) {
-		known.flushTeam     = int(arrays);
-		known.forcesPending = false;
-		return;
-	}
-	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
-	// Through the calls only if the summed arrays are not at hand (a call into libyade per body and array
-	// was a third of this phase).
-	const auto add = [&forces, &summed](long id, const Vector3r& f, const Vector3r& t) {
-		if (f != Vector3r::Zero()) {
-			if (summed.forces) summed.forces[id] += f;
-			else
-				forces.addForceUnsynced(Body::id_t(id), f);
-		}
-		if (t != Vector3r::Zero()) {
-			if (summed.torques) summed.torques[id] += t;
-			else
-				forces.addTorqueUnsynced(Body::id_t(id), t);
-		}
-	};
-	// Each thread the bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once
-	// read: the arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in
-	// its cache. After a pass by parts (parted), array k holds forces only on the bodies of part k and of its
-	// borders, or only on its borders if that pass added part k's straight into the summed arrays (direct):
-	// the other entries are exact zeros, and are neither read nor written (reading them moved every line of
-	// every array from the core that zeroed it to the other one at every step). In one thread the sum per
-	// body is that of InteractionLoop's: the thread's sum.
-#ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) if (long(snapshot.particles.size()) >= parallelBodies)
-#endif
-	{
-		const int  thread  = pendular::threadNumber();
-		const auto part    = pendular::partOf(partition.bodyParts, n, thread, pendular::teamSize());
-		const bool byParts = parted && pendular::teamSize() == arrays;
-		if (thread == 0) known.flushTeam = pendular::teamSize();
-		if (arrays == 1) // one thread's arrays: no other to look into
-			for (long id = part.first; id < part.second; ++id) {
-				const Vector3r f = threadForce[0][id], t = threadTorque[0][id];
-				threadForce[0][id] = threadTorque[0][id] = Vector3r::Zero();
-				add(id, f, t);
-			}
-		else {
-			// Per array, the next of its border bodies in this part.
-			std::vector<const Body::id_t*> next(size_t(arrays), nullptr), last(size_t(arrays), nullptr);
-			if (byParts)
-				for (long k = 0; k < arrays; ++k)
-					if (k != thread) {
-						const auto& ids = partition.borders[size_t(k)][size_t(thread)];
-						next[size_t(k)] = ids.data();
-						last[size_t(k)] = ids.data() + ids.size();
-					}
-			for (long id = part.first; id < part.second; ++id) {
-				Vector3r f = Vector3r::Zero(), t = Vector3r::Zero();
-				for (long k = 0; k < arrays; ++k) {
-					if (byParts && k != thread) {
-						if (next[size_t(k)] == last[size_t(k)] || *next[size_t(k)] != id) continue;
-						++next[size_t(k)];
-					}
-					f += threadForce[k][id];
-					t += threadTorque[k][id];
-					threadForce[k][id] = threadTorque[k][id] = Vector3r::Zero();
-				}
-				add(id, f, t);
-			}
-		}
-	}
-	known.forcesPending = false;
 }
 
 } // namespace yade

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "LoopBodies.hpp"
+#include "LoopForces.hpp"
 #include "LoopGeometry.hpp"
 #include "LoopPairs.hpp"
 #include "LoopPartition.hpp"
@@ -91,22 +92,15 @@ public:
 	static void guardReaders() { readersGuarded = true; }
 	// What this step's gathering read of every body (see pendular::BodyPointers).
 	const pendular::BodyPointers& gatheredBodies() const { return snapshot.pointers; }
-	// What one thread of the pass adds straight into the force container's summed arrays: the forces and
-	// torques of the bodies [first, last), its part (see ThreadSink in PendularLoop.cpp).
-	struct DirectPart {
-		Vector3r *forces = nullptr, *torques = nullptr;
-		long      first = 0, last = 0;
-		bool      has(Body::id_t id) const { return id >= first && id < last; }
-	};
 	// The threads of the last hand-over of the forces into the force container (0: none yet) and their parts
 	// of the bodies (see pendular::partOf): PendularForceResetter zeroes each part in the thread that wrote it.
-	int                      flushTeam() const { return known.flushTeam; }
+	int                      flushTeam() const { return forceSums.team; }
 	const std::vector<long>& flushParts() const { return partition.bodyParts; }
 	// The force container's reset of this step, to be done by the gathering (each thread zeroes its part of the
 	// bodies), from PendularForceResetter when only colliders run between them (which leave the force container
 	// alone); summed: the container's summed arrays, size: their entries.
-	void takeReset(const Scene* s, const pendular::SummedArrays& summed, long size) { pendingReset = PendingReset { s, s->iter, summed, size }; }
-	void cancelReset() { pendingReset = PendingReset {}; } // a reset done by the resetter (one left by a failed step is dropped)
+	void takeReset(const Scene* s, const pendular::SummedArrays& summed, long size) { forceSums.reset = pendular::ForceReset { s, s->iter, summed, size }; }
+	void cancelReset() { forceSums.reset = pendular::ForceReset {}; } // a reset done by the resetter (one left by a failed step is dropped)
 	DECLARE_LOGGER;
 
 private:
@@ -162,20 +156,13 @@ private:
 	mutable bool                                 enginesOwned = false;
 	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
-	// parted: the pass computed the parts of work, each on its thread (see shareWork); direct: each thread
-	// added the forces of its part of the bodies into the force container itself (directParts);
-	// bordersDone: and handed the borders over (handOverBorders) in the pass's parallel region.
-	void flushForces(int threads, bool parted, bool direct, bool bordersDone);
-	// Thread `thread` of a pass by parts adds into the container's summed arrays what the other threads'
-	// arrays hold for the bodies of its part (their borders with it), in the order of the arrays, and
-	// zeroes those entries.
-	void handOverBorders(int thread, const pendular::SummedArrays& summed);
 
 	using Slot = pendular::Slot;
 	pendular::Pairs         pairs;
 	pendular::WorkPartition partition;
 	bool                    removeUnseen = false;
 	pendular::BodySnapshot  snapshot;
+	pendular::ForceAccumulator forceSums;
 	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
 	// freed (freeArrays) starts again from these values, as a new loop.
 	struct Known {
@@ -191,23 +178,8 @@ private:
 		Scene* recordScene  = nullptr;
 		bool   stale        = false;
 		bool   placeholders = false;
-		// A pass has added to the force arrays and no flush has read them since (a step that ended in between).
-		bool forcesPending = false;
-		// The threads of the last flush (0: none since the loop started; see flushTeam).
-		int flushTeam = 0;
 	};
 	Known                              known;
-	// The reset that takeReset handed to this step's gathering (scene nullptr: none).
-	struct PendingReset {
-		const Scene*           scene = nullptr;
-		long                   iter  = -1;
-		pendular::SummedArrays summed;
-		long                   size = 0;
-	};
-	PendingReset pendingReset;
-	// Per OpenMP thread, per body id; zero between steps (the flush zeroes what it read, see Known::forcesPending).
-	std::vector<std::vector<Vector3r>> threadForce, threadTorque;
-	std::vector<DirectPart>            directParts; // per OpenMP thread of the pass
 	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
 	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
 	// two placeholders shared by all (so that YADE's collider sees it real) instead of its own ScGeom
