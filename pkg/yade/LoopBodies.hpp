@@ -8,6 +8,7 @@
 // Everything here is per body and step: inline.
 #pragma once
 
+#include "LoopInstrumentation.hpp"
 #include "Passes.hpp"
 #include "Pendular.hpp"
 
@@ -21,6 +22,11 @@
 
 namespace yade {
 namespace pendular {
+	// The loop's passes are bound by memory latency (see prefetchObject): they prefetch the bodies, the
+	// interactions and the records this many entries ahead (an Interaction and a Body, whose objects are
+	// read once it is cached, twice as far).
+	constexpr long prefetchAhead = 8;
+
 	// What the fused pass needs of one body. Two whole cache lines: what every bridge-step and every check
 	// of a potential pair reads (position, velocity, radius, subdomain, kind) in the first, what only
 	// friction and films read in the second; whole lines, so that the bodies that other threads read can be
@@ -175,6 +181,11 @@ namespace pendular {
 		{
 			const Particle& p = particles[id];
 			return p.kind == Particle::pendularSphere && p.subdomain == subdomain;
+		}
+		long heldBytes() const
+		{
+			return capacityBytes(particles) + capacityBytes(previous) + capacityBytes(pointers.states) + capacityBytes(pointers.bounds)
+			        + capacityBytes(pointers.parts);
 		}
 	};
 } // namespace pendular

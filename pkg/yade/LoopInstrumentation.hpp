@@ -22,6 +22,7 @@ namespace pendular {
 	struct BusyTrace {
 		std::size_t at = 0;
 		bool        on = false;
+		BusyTrace()    = default;
 		BusyTrace(std::vector<Real>& busyTimes, long traceBusy, bool fast, int threads)
 		        : at(busyTimes.size())
 		        , on(fast && traceBusy > 0)

@@ -1,22 +1,26 @@
-// PendularLoop: YADE's InteractionLoop with a fused pass for the interactions of yade-capillary.
+// PendularLoop: YADE's InteractionLoop with a fused pass for the interactions of yade-capillary. The
+// loop coordinates its parts, each the owner of its arrays (see their files): the body snapshot
+// (LoopBodies.hpp), the pairs with the gap bound and the list of entries to visit (LoopPairs.hpp), the
+// work partition between threads (LoopPartition.hpp), the record store (LoopRecords.hpp), the force
+// accumulation (LoopForces.hpp), the container sort (LoopSort.hpp), the sphere geometry
+// (LoopGeometry.hpp) and the instrumentation (LoopInstrumentation.hpp). It keeps the order of a step's
+// phases (action), the per-interaction pass (visit and what it calls), YADE's dispatch for the other
+// interactions, and the entry points from Python.
 #pragma once
 
 #include "LoopBodies.hpp"
 #include "LoopForces.hpp"
 #include "LoopGeometry.hpp"
+#include "LoopInstrumentation.hpp"
 #include "LoopPairs.hpp"
 #include "LoopPartition.hpp"
+#include "LoopRecords.hpp"
 #include "Passes.hpp"
 #include "Pendular.hpp"
 #include <core/InteractionLoop.hpp>
 
-#include <boost/python/converter/shared_ptr_deleter.hpp>
 #include <boost/weak_ptr.hpp>
-#include <atomic>
-#include <cstdint>
-#include <limits>
 #include <thread>
-#include <unordered_map>
 #include <vector>
 
 namespace yade {
@@ -24,41 +28,10 @@ namespace yade {
 class PendularLoop : public InteractionLoop {
 public:
 	using Particle = pendular::Particle;
-
-	// A sphere-sphere interaction with a fixed-volume inviscid bridge (or none), between two steps:
-	// what a step changes of ScGeom and PendularPhys, under their names, in two cache lines, so that a
-	// step reads and writes those two lines per interaction instead of the Interaction, ScGeom and
-	// PendularPhys objects (about 12, scattered over the heap). What a step does not change (the
-	// bridge's invariants and the contact parameters) is shared by every record with the same ones
-	// (Invariants, one entry for all the bridges of a monodisperse material); what follows from the
-	// record and the bodies (the contact point, the radii) is written only into the objects. The
-	// objects are brought up to date whenever something may read them (syncScene).
-	struct alignas(64) Record {
-		Body::id_t id1, id2; // first: what the pass reads first
-		int        invariants; // index in invariants
-		bool       active;     // PendularPhys
-		bool       isActive;   // Interaction::isActive
-		// ScGeom
-		Vector3r normal, shearInc;
-		Real     penetrationDepth;
-		// PendularPhys
-		Vector3r normalForce, shearForce;
-		Real     Fcap;
-	};
-	static_assert(sizeof(Record) == 128 && alignof(Record) == 64, "a Record is two whole cache lines: keep it so");
-	// The members of PendularPhys that a step of a record reads and does not change, and the whole
-	// physics they came from (every member but those of the record), from which the objects of a
-	// record are made again when something reads them (see makeObjects).
-	struct Invariants {
-		capillary::Bridge                   bridge;
-		Real                                kn, cn, ks, cs, tangensOfFrictionAngle, Vb;
-		bool                                wet, forceInContact;
-		shared_ptr<const PendularPhys>      prototype;
-		long                                users = 0; // records that use it; freed at 0 (see release)
-	};
+	using Record   = pendular::Record;
 
 	void action() override;
-	// The recorded interactions get their own ScGeom and PendularPhys back (see makeObjects).
+	// The recorded interactions get their own ScGeom and PendularPhys back (see RecordStore::sync).
 	~PendularLoop() override;
 	// sizeof of what an interaction and a body cost, for the memory benchmark.
 	boost::python::dict memory() const;
@@ -91,114 +64,105 @@ public:
 	static bool readersGuarded;
 	static void guardReaders() { readersGuarded = true; }
 	// What this step's gathering read of every body (see pendular::BodyPointers).
-	const pendular::BodyPointers& gatheredBodies() const { return snapshot.pointers; }
+	const pendular::BodyPointers& gatheredBodies() const { return state.snapshot.pointers; }
 	// The threads of the last hand-over of the forces into the force container (0: none yet) and their parts
 	// of the bodies (see pendular::partOf): PendularForceResetter zeroes each part in the thread that wrote it.
-	int                      flushTeam() const { return forceSums.team; }
-	const std::vector<long>& flushParts() const { return partition.bodyParts; }
+	int                      flushTeam() const { return state.forces.team; }
+	const std::vector<long>& flushParts() const { return state.partition.bodyParts; }
 	// The force container's reset of this step, to be done by the gathering (each thread zeroes its part of the
 	// bodies), from PendularForceResetter when only colliders run between them (which leave the force container
 	// alone); summed: the container's summed arrays, size: their entries.
-	void takeReset(const Scene* s, const pendular::SummedArrays& summed, long size) { forceSums.reset = pendular::ForceReset { s, s->iter, summed, size }; }
-	void cancelReset() { forceSums.reset = pendular::ForceReset {}; } // a reset done by the resetter (one left by a failed step is dropped)
+	void takeReset(const Scene* s, const pendular::SummedArrays& summed, long size) { state.forces.reset = pendular::ForceReset { s, s->iter, summed, size }; }
+	void cancelReset() { state.forces.reset = pendular::ForceReset {}; } // a reset done by the resetter (one left by a failed step is dropped)
 	DECLARE_LOGGER;
 
 private:
+	using Slot = pendular::Slot;
 	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
 	void resolve(Resolved&);
+	// Everything the loop holds for its scene, by part. A loop whose scene is released starts again from
+	// SceneState {}, as a new loop: the gathering starts an epoch (no epoch bodies), the pass visits every
+	// entry, no records. Capacities are not kept: a released scene frees its arrays.
+	struct SceneState {
+		pendular::BodySnapshot     snapshot;
+		pendular::Pairs            pairs;
+		pendular::WorkPartition    partition;
+		pendular::RecordStore      records;
+		pendular::ForceAccumulator forces;
+		long                       heldBytes() const
+		{
+			return snapshot.heldBytes() + pairs.heldBytes() + partition.heldBytes() + records.heldBytes() + forces.heldBytes();
+		}
+	};
+	SceneState state;
+	void       releaseState();
+	// Per step: the potential interactions that the collider did not see in this step are skipped (see
+	// action), the periodic cell's hSize.
+	bool     removeUnseen = false;
+	Matrix3r cellHsize    = Matrix3r::Zero();
+	// The thread of the last step (objectsOf and syncScene refuse other threads while it runs).
+	std::thread::id loopThread;
+	// The engine list ownsStep last looked at, and whether it has only known engines and this loop.
+	mutable std::vector<boost::weak_ptr<Engine>> ownedEngines;
+	mutable bool                                 enginesOwned = false;
+
+	// The phases of a step, in the order of action().
+	void prepareStep(Resolved& r);
 	void gather(int threads);
+	pendular::SummedArrays openContainer(int threads);
+	// What a pass is to do, decided before it (see planPass).
+	struct PassPlan {
+		int                    threads = 1;
+		long                   size = 0, m = 0, bodies = 0; // entries of the container, of this pass, bodies
+		bool                   recording = false, skipApart = false;
+		bool                   fast = false, listing = false; // on the list; making the list
+		bool                   partsValid = false, partsReady = false;
+		long                   handOffAt  = 0;
+		Real                   threshold  = 0; // see Pairs::threshold
+		pendular::SummedArrays summed;
+		pendular::BusyTrace    trace;
+	};
 	// The counts of one thread's part of a pass (see nFused, nDispatched, nApart, nRecorded, nBounded).
 	struct Counts {
 		long fused = 0, dispatched = 0, apart = 0, recorded = 0, bounded = 0;
 		int  thread = 0; // the OpenMP thread of this part (its force arrays and lists)
 	};
+	// Their sums over the threads, with the entries out of order and whether the whole team ran.
+	struct PassCounts {
+		long fused = 0, dispatched = 0, apart = 0, recorded = 0, bounded = 0, disorder = 0;
+		bool teamComplete = true;
+	};
+	PassPlan   planPass(const Resolved& r, bool recording, long colliderRuns, int threads, const pendular::SummedArrays& summed);
+	PassCounts pass(const PassPlan& plan, const Resolved& r);
+	void       passOnList(const PassPlan& plan, const Resolved& r, Counts& c);
+	long       passAll(const PassPlan& plan, const Resolved& r, Counts& c);
+	void       finishPass(const PassPlan& plan, const Resolved& r, PassCounts counts, long colliderRuns);
+
+	// One entry of the container, and what it calls.
 	void visit(long i, long ahead1, long ahead2, const Resolved& r, bool skipApart, bool recording, Counts& c);
+	void prefetchEntries(long ahead1, long ahead2, bool skipApart, int thread) const;
+	bool visitRecorded(const shared_ptr<Interaction>& I, Slot& slot, const Resolved& r, Counts& c);
+	bool checkApart(Slot& slot, Counts& c) const;
 	void step(const shared_ptr<Interaction>& I, const Resolved& r, Counts& c);
-	long colliderRunCount() const;
-	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
 	void sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
-	// The shearInc of a record as of its last step, from `seen`, the particles that step read.
-	Vector3r recordShearInc(const Record& rec, const std::vector<Particle>& seen) const;
+	void dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread);
+	// One step of a recorded interaction; false: reset it.
+	bool recordStep(Record& rec, const Resolved& r, int thread);
 	// Our law, inline, on the gathered data, into the thread's force arrays; false: reset the interaction.
 	template <class Geom, class Phys, class Rotate>
 	bool applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const Geom& geom, Phys& phys, const Resolved& r, const Vector3r& shift2,
 	              const Vector3r& shiftVel, const Rotate& rotate, int thread);
-	// One step of a recorded interaction; false: reset it.
-	bool recordStep(Record& rec, const Resolved& r, int thread);
-	bool recordable(const Interaction& I, const Resolved& r) const;
-	// A body that records may join: a PendularMat sphere of this scene's subdomain (as gathered this step).
-	bool sphereHere(Body::id_t id) const { return snapshot.sphereHere(id, scene->subdomain); }
-	void load(Record& rec, const shared_ptr<Interaction>& I);
-	int  invariantsOf(const PendularPhys& phys);
-	static std::string invariantsKey(const PendularPhys& phys);
-	// A record no longer uses entry `index` of invariants (freed when none does, so that a polydisperse
-	// packing keeps only the entries of the bridges that exist).
-	void release(int index);
-	// Frees a record whose interaction is reset or has its own objects again.
-	void forget(int index);
-	// Writes the record into its interaction's objects, made first if the interaction holds the
-	// placeholders; true if they were made.
-	// seen: the particles of the record's last step (particles between two steps; previous during a pass).
-	bool store(const Record& rec, Interaction& I, const std::vector<Particle>& seen) const;
-	bool store(const Record& rec, Interaction& I) const { return store(rec, I, snapshot.particles); }
-	void syncObjects(bool drop, bool all);
-	void freeArrays();
-	template <class Loop, class Visit> static void forEachArray(Loop& loop, Visit&& visit);
-	// The recorded interactions whose objects nothing but the interaction holds get the placeholders.
-	void dropObjects();
-	// After the collider has changed the container: the slot of each record's interaction (Interaction::linIx).
-	void reconcile();
-	void settleRecords();
-	bool recordsAllowed(const Resolved& r) const;
-	bool ownsStep(const Resolved& r) const;
-	// The engine list ownsStep last looked at, and whether it has only known engines and this loop.
-	mutable std::vector<boost::weak_ptr<Engine>> ownedEngines;
-	mutable bool                                 enginesOwned = false;
-	void sortInteractions();
 	void callbacksOn(Interaction& I, const Resolved& r);
 
-	using Slot = pendular::Slot;
-	pendular::Pairs         pairs;
-	pendular::WorkPartition partition;
-	bool                    removeUnseen = false;
-	pendular::BodySnapshot  snapshot;
-	pendular::ForceAccumulator forceSums;
-	// What the loop knows of its scene between two passes, besides its arrays. A loop whose arrays are
-	// freed (freeArrays) starts again from these values, as a new loop.
-	struct Known {
-		// The collider's runs and the container the slots of the records were last matched to (reconcile).
-		long                        reconciledRuns      = -1;
-		const InteractionContainer* reconciledContainer = nullptr;
-		size_t                      reconciledSize      = 0;
-		// The last pass's time step and Ig2's avoidGranularRatcheting (see previous).
-		Real seenDt         = 0;
-		bool seenRatcheting = true;
-		// The scene of the records; stale: the records are newer than the objects; placeholders: some
-		// recorded interaction may hold the placeholders.
-		Scene* recordScene  = nullptr;
-		bool   stale        = false;
-		bool   placeholders = false;
-	};
-	Known                              known;
-	// The records, their interactions (kept alive while recorded; read only when loaded, stored or
-	// reset) and their free entries. Changed only between the passes. A recorded interaction holds
-	// two placeholders shared by all (so that YADE's collider sees it real) instead of its own ScGeom
-	// and PendularPhys, which are made from the record when something reads them (store) and dropped
-	// again after the next pass if nothing else holds them (dropObjects): withObjects lists the
-	// records that may have their own.
-	std::vector<Record>                            records;
-	std::vector<shared_ptr<Interaction>>           recordInteractions;
-	// The distinct invariants of the records, and where each is, by the PendularPhys members they
-	// are made from (see invariantsOf).
-	std::vector<Invariants>                        invariants;
-	std::unordered_map<std::string, int>           invariantsIndex;
-	std::vector<int>                               freeRecords, freeInvariants;
-	std::vector<int>                               withObjects;
-	long liveRecords() const { return long(records.size()) - long(freeRecords.size()); }
-	std::vector<std::vector<long>>                 toRecord;   // per thread: container entries to record after the pass
-	std::vector<std::vector<int>>                  toForget;   // per thread: records to free after the pass
-	std::thread::id                                loopThread;
-	Matrix3r                           cellHsize = Matrix3r::Zero();
+	// Whether the records may be kept, the interaction recorded, the step owned by known engines.
+	bool recordsAllowed(const Resolved& r) const;
+	bool recordable(const Interaction& I, const Resolved& r) const;
+	bool ownsStep(const Resolved& r) const;
+	// A body that records may join: a PendularMat sphere of this scene's subdomain (as gathered this step).
+	bool sphereHere(Body::id_t id) const { return state.snapshot.sphereHere(id, scene->subdomain); }
+	long colliderRunCount() const;
+	void sortInteractions();
+	void syncObjects(bool drop, bool all);
 
 public:
 	// clang-format off
