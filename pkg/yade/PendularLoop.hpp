@@ -78,7 +78,16 @@ public:
 
 private:
 	using Slot = pendular::Slot;
-	struct Resolved; // the functors the dispatchers choose for PendularMat spheres, see resolve()
+	// The functors YADE's dispatchers choose for two PendularMat spheres, resolved once per step with
+	// sample objects (a dispatcher resolves by class only, see resolve()). The fused pass is used only when
+	// they are exactly the functors it reproduces.
+	struct Resolved {
+		const Ig2_Sphere_Sphere_ScGeom*           ig2 = nullptr;
+		Ip2_PendularMat_PendularMat_PendularPhys* ip2 = nullptr;
+		Law2_ScGeom_PendularPhys_Bridge*          law = nullptr; // also for walls and facets
+		bool                                      fused = false;
+		vector<IntrCallback::FuncPtr>             callbacks;
+	};
 	void resolve(Resolved&);
 	// Everything the loop holds for its scene, by part. A loop whose scene is released starts again from
 	// SceneState {}, as a new loop: the gathering starts an epoch (no epoch bodies), the pass visits every
