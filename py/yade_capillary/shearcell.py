@@ -205,8 +205,8 @@ def run_engines(info, loop="fused", integrator="pendular"):
 
     from .scene import engines
 
-    # With our loop and integrator, PendularRotationEngine (RotationEngine's velocities, bit for bit, made in
-    # the thread that owns the wall's bodies); else YADE's own engines, as its users set them up.
+    # With our loop and integrator, PendularRotationEngine (RotationEngine's velocities, bit for bit, with one
+    # rotation per step); else YADE's own engines, as its users set them up.
     ours = loop == "fused" and (integrator or "pendular") == "pendular"
     rotation = (PendularRotationEngine if ours else RotationEngine)(ids=info["rotating"], rotationAxis=(0, 0, 1),
                                                                     angularVelocity=2 * math.pi / info["cfg"]["period"],
