@@ -10,11 +10,10 @@ import tempfile
 
 import numpy as np
 
-import yade_capillary
 from yade_capillary import cellanalysis, shearcell
 
 nseeds = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(yade_capillary.__file__))))  # __file__ is yade's launcher here; the package in build/python links to py/
+root = os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0])))  # yade puts the script's path in sys.argv[0]
 work = tempfile.mkdtemp(prefix="shear_cell_ref_")
 values = {}
 for case in shearcell.CASES:

@@ -6,14 +6,14 @@ import pytest
 
 from yade_capillary import cases, kernels
 
-ISSUE_MODELS = ["weigert", "willett_full", "willett_reduced", "rabinovich", "rabinovich_lambert", "richefeu", "soulie",
+MODELS = ["weigert", "willett_full", "willett_reduced", "rabinovich", "rabinovich_lambert", "richefeu", "soulie",
                 "linear_irreversible", "young_laplace_table"]
 W11 = cases.case("W11")
 ARGS = dict(R1=W11.R1_m, R2=W11.R2_m, volume=W11.volume_m3, gamma=W11.gamma_N_m, theta=W11.theta_rad)
 
 
 def test_model_and_rule_names_as_documented():
-    assert kernels.MODEL_NAMES == ISSUE_MODELS
+    assert kernels.MODEL_NAMES == MODELS
     assert kernels.RUPTURE_NAMES == ["lian", "willett", "willett_elskamp"]
 
 
@@ -22,7 +22,7 @@ def test_docstrings_state_units():
         assert "[m]" in fn.__doc__ and "ValueError" in fn.__doc__
 
 
-@pytest.mark.parametrize("model", ISSUE_MODELS)
+@pytest.mark.parametrize("model", MODELS)
 def test_vectorised_equals_scalar(model):
     ac = kernels.bridge(model, **ARGS)["rupture"]
     a = np.linspace(-0.1 * ac, 1.2 * ac, 57)

@@ -8,8 +8,8 @@
 #   build/yade-capillary -j2 -n -x tests/yade/test_random_scenes.py 500 3000 1
 import sys
 
-from yade_capillary import random_scenes
-from yade_capillary.testing import Checker
+import random_scenes
+from testing import Checker
 
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 60
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 2000

@@ -20,8 +20,9 @@ import sys
 
 from yade import O
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 NIGHTLY = "nightly" in sys.argv[1:] or os.environ.get("STRESS_SIZE") == "nightly"
 ONLY = os.environ.get("STRESS_ONLY")  # "settling" or "gas": run only those scenes
