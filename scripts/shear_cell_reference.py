@@ -2,7 +2,7 @@
 # every liquid case, several seeds; stores mean and seed-to-seed standard deviation of mu, c, Rc
 # and the torque on the rotating walls, and the command line. The CI regression (tests/yade/test_shear_cell_ci.py) compares its own
 # run (seed 1) with these values within 4 standard deviations.
-# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py [nseeds]   (about 2.5 min per seed)
+# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py [nseeds]   (about 1 min per seed)
 import json
 import os
 import sys
