@@ -1,11 +1,10 @@
 """The pybind11 module in plain python3: API, vectorisation, docstrings, errors, case table."""
 import math
+import os
+import re
 
 import numpy as np
 import pytest
-
-import os
-import re
 
 from yade_capillary import cases, kernels
 

@@ -27,8 +27,9 @@ from yade import O
 from yade.utils import sphere
 from yade.wrapper import FrictMat, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_loop")
 STEPS = 2000

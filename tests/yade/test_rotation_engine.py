@@ -19,8 +19,9 @@ import math
 from yade import O
 from yade.wrapper import PendularRotationEngine, PyRunner, RotationEngine
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_rotation_engine")
 STEPS = 500

@@ -257,7 +257,7 @@ def markdown(classes=None):
     r = _Renderer(classes)
     lines = ["# Class reference", "",
              "The classes that the yade-capillary plugin (%s) registers in YADE, generated from the docstrings of the "
-             "build by `py/yade_capillary/reference.py`; do not edit by hand. Regenerate it with" % PLUGIN_LIBRARY, "",
+             "build by `tools/reference.py`; do not edit by hand. Regenerate it with" % PLUGIN_LIBRARY, "",
              "    " + REGENERATE, "",
              "(`tests/yade/test_reference.py` fails when this page differs from what the build generates).", "",
              "Each class lists its own attributes, not those inherited from its base (see YADE's reference for those). "
