@@ -9,6 +9,7 @@
 #include <boost/python/raw_function.hpp>
 #include <boost/weak_ptr.hpp>
 #include <algorithm>
+#include <atomic>
 #include <unordered_map>
 #include <sstream>
 #include <stdexcept>
@@ -37,7 +38,7 @@ namespace {
 	// simulation thread and its first isRunning() check (under load, the erroneous first step is
 	// over by then), and in O.run(); ...; O.wait() whenever the step fails before O.wait(). So an
 	// error raised in the simulation thread is also kept here as undelivered, and Omega.run and
-	// Omega.wait are wrapped (guardOmega) to raise it when YADE's own wait() returned without it.
+	// Omega.wait are wrapped (installGuards) to raise it when YADE's own wait() returned without it.
 	struct Raised {
 		std::string            message;             // of the last error raised by a PendularCheck
 		bool                   undelivered = false; // raised in the simulation thread, not yet given to Python
@@ -88,10 +89,11 @@ namespace {
 		}
 		throw std::invalid_argument(message);
 	}
-	// Omega.run and Omega.wait of yade.wrapper before guardOmega wrapped them (never freed: they
+	// Omega.run and Omega.wait of yade.wrapper before installGuards wrapped them (never freed: they
 	// must not be released after the interpreter is finalized).
-	py::object* yadeRun  = nullptr;
-	py::object* yadeWait = nullptr;
+	py::object*       yadeRun  = nullptr;
+	py::object*       yadeWait = nullptr;
+	std::atomic<bool> guarded { false }; // installGuards has run (read by the simulation thread)
 
 	py::object guardedRun(py::tuple args, py::dict kw) // Omega.run(self, nSteps=-1, wait=False)
 	{
@@ -247,6 +249,11 @@ void PendularCheck::action()
 	// A new bound (or a new engine after O.load): the step's reports were made with the old one.
 	const bool fresh = !(alarmBound == maxOverlap) || alarmBodies != scene->bodies->size();
 	bool newPair = false; // a pair of a new smallest critical time step
+	static std::atomic<bool> unguardedWarned { false };
+	if (!guarded && !unguardedWarned.exchange(true))
+		LOG_WARN("yade_capillary.patches.install() has not run in this process (yade_capillary.scene.engines() runs it): an error of PendularCheck "
+		         "raised in O.run's thread may be missed by O.wait(), O.bodies.erase/clear and O.interactions.erase/clear do not account for the "
+		         "liquid they remove, PendularIntegrator does not see later changes of its NewtonIntegrator's parameters, and PendularLoop keeps no records");
 	for (const auto& engine : scene->engines) {
 		if (engine.get() == this && !loopSeen)
 			message = "PendularCheck must come after the interaction loop in O.engines (it settles the liquid of the step's bridges and raises "
@@ -359,10 +366,10 @@ void PendularCheck::raiseInStep(Scene* scene, const std::string& message)
 	throw std::invalid_argument(message);
 }
 
-void PendularCheck::guardOmega(boost::python::object wrapper)
+void PendularCheck::installGuards()
 {
 	if (yadeRun) return;
-	py::object omega = wrapper.attr("Omega");
+	py::object wrapper = py::import("yade.wrapper"), omega = wrapper.attr("Omega");
 	yadeRun          = new py::object(omega.attr("run"));
 	yadeWait         = new py::object(omega.attr("wait"));
 	py::object run = py::raw_function(guardedRun, 1), wait = py::raw_function(guardedWait, 1);
@@ -383,6 +390,7 @@ void PendularCheck::guardOmega(boost::python::object wrapper)
 	wrap(wrapper.attr("BodyContainer"), "clear", yadeClear, guardedClear, note);
 	wrap(wrapper.attr("InteractionContainer"), "erase", yadeIntrErase, guardedIntrErase, note);
 	wrap(wrapper.attr("InteractionContainer"), "clear", yadeIntrClear, guardedIntrClear, note);
+	guarded = true;
 }
 
 namespace {

@@ -252,14 +252,14 @@ class PendularCheck : public GlobalEngine {
 	// The step's dt check: warns (again if newPair lowered the limit), or with adaptDt lowers O.dt;
 	// returns an input error ("" if none).
 	std::string checkDt(bool newPair);
+
+public:
 	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of this
 	// engine that YADE's wait() missed (see deliverMissed in Pendular.cpp), and the erase and clear
 	// of BodyContainer and InteractionContainer, so that the liquid they remove is accounted for.
-	// Called when YADE registers this class in yade.wrapper, after those classes.
-	static void guardOmega(boost::python::object wrapper);
-
-public:
-	void action() override;
+	// Called by yade_capillary.patches.install, which lists every patch of YADE's Python objects.
+	static void installGuards();
+	void        action() override;
 	// Raises `message` from a step of `scene` as PendularCheck's errors are raised: a ValueError in
 	// Python, also when YADE's wait() misses it, and under mpiexec the end of every rank.
 	static void raiseInStep(Scene* scene, const std::string& message);
@@ -271,10 +271,12 @@ public:
 		"materials with different models or a bridge outside its model's domain, and warns (once per value of O.dt) when O.dt "
 		"exceeds dtSafety times the smallest two-body critical time step of the interactions created so far. Place it right "
 		"after the InteractionLoop (yade_capillary.scene.engines does). Without it, an input error stops the simulation at the "
-		"end of the step and is logged. The plugin wraps Omega.run and Omega.wait so that they raise the error also when it "
-		"stopped the simulation thread before YADE's wait() looked (which then returns without it). With liquid='film' it also "
-		"forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
-		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms). O.bodies.erase and clear, O.interactions.erase and clear are wrapped to account for the liquid they remove.",
+		"end of the step and is logged. installGuards (called by yade_capillary.patches.install, which yade_capillary.scene.engines "
+		"calls) wraps Omega.run and Omega.wait so that they raise the error also when it "
+		"stopped the simulation thread before YADE's wait() looked (which then returns without it), and O.bodies.erase and clear, "
+		"O.interactions.erase and clear to account for the liquid they remove; it warns at its first step when they are not wrapped. "
+		"With liquid='film' it also forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
+		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms).",
 		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-], (0, 1]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
 		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt: with the viscous forces of the pair's bridge, in film mode of the largest bridge it can form); inf before the first."))
 		((Vector2i, criticalPair, Vector2i(-1, -1), Attr::readonly, "The two bodies of the interaction that has criticalDt [-]; (-1, -1) before the first."))
@@ -285,8 +287,8 @@ public:
 		((long, nOverlaps, 0, Attr::readonly, "Number of contact-steps whose overlap exceeded maxOverlap times the pair's smaller radius [-] (pairs of two bodies that do not move are not counted)."))
 		((Real, largestOverlap, 0, Attr::readonly, "Largest overlap counted in nOverlaps, divided by the pair's smaller radius [-]; 0 if none.")),
 		/*ctor*/,
-		/*py: pasted after `(void)_classObj` in pyRegisterClass(_scope), _scope being yade.wrapper*/
-		; guardOmega(_scope)
+		.def("installGuards", &PendularCheck::installGuards, "Wrap Omega.run, Omega.wait, O.bodies.erase and clear, O.interactions.erase and clear (once per process; see the class). yade_capillary.patches.install calls it.")
+		.staticmethod("installGuards")
 	);
 	// clang-format on
 };
@@ -329,7 +331,7 @@ public:
 	// adds the liquid of the bridges broken in the step to the films. Throws std::invalid_argument if
 	// a bridge could not be built (after settling all others, so that no liquid is lost).
 	void settleFilms(Scene* scene);
-	// The Python paths that remove bodies or interactions (wrapped by PendularCheck::guardOmega):
+	// The Python paths that remove bodies or interactions (wrapped by PendularCheck::installGuards):
 	// releasePair breaks an active bridge as at rupture, its liquid to the two films (O.interactions.erase
 	// and clear); eraseBody breaks the body's bridges and moves its film to liquidRemoved, with its clump's
 	// members if clumpMembers (O.bodies.erase); clearBodies moves all liquid to liquidRemoved
