@@ -12,7 +12,8 @@ materials may no longer rely on):
 
 * ALWAYS: what the plugin's engines need to give right results, with or without PendularLoop's records.
   Each adds a step before or after YADE's method and leaves its arguments, results and errors as they
-  were (an error of PendularCheck that YADE's wait() missed is raised in addition).
+  were, but for two additions: O.run and O.wait raise an error of PendularCheck that YADE's wait()
+  missed, and while O.run() runs in the background with records, erase and clear raise RuntimeError.
 * RECORDS: what PendularLoop's records need (PendularLoop.keepRecords). Between steps the loop keeps the
   state of sphere-sphere interactions without film or viscosity in a contiguous array of its own; such an
   interaction holds two placeholders shared by all instead of its own ScGeom and PendularPhys, which are
@@ -201,7 +202,7 @@ def _apply_run(w):
 PATCHES = (
     # ALWAYS, in this order (the Python O.run wraps the C++ one).
     Patch(ALWAYS, "an error of PendularCheck raised in O.run's thread reaches Python as ValueError also when YADE's "
-          "wait() returned without it (it does when the simulation thread stopped before wait() looked)",
+          "wait() returned without it, as it does when the simulation thread stopped before wait() looked",
           lambda w: _names(w.Omega, "run", "wait"), _cxx_guards),
     Patch(ALWAYS, "the liquid of the bridges and films that they remove is accounted for "
           "(Law2_ScGeom_PendularPhys_Bridge.liquidTotals), the records written into the objects first",

@@ -3,7 +3,7 @@
 # parameters and wrote the collider's flag through Python at every step, so such a step could wait for the
 # GIL forever: test_film hung there once (after O.pause(); O.wait(); O.reset()). Now the
 # parameters are read before O.run and after a NewtonIntegrator attribute is set (PendularIntegrator.refresh,
-# objects.guard), and the flag is written into the object directly.
+# yade_capillary.patches), and the flag is written into the object directly.
 # - While the main thread holds the GIL in one long C call (a sum over a range: the GIL is handed over
 #   rarely), a run in the background goes on at least 0.3 times as fast as while the main thread sleeps
 #   (measured: 0.03 before the change, 282 steps in 0.22 s against about 7 000; the main thread's loop

@@ -6,14 +6,16 @@
 # This file runs under yade (-x) and starts three subprocesses, each running this same file with
 # `--worker MODE OUT`: "plain" twice (/usr/bin/yade) and "patched" once (build/yade-capillary, which
 # imports yade_capillary and first runs a wet chain of 8 spheres with scene.engines(), which installs
-# every patch, its PendularLoop keeping records of the 7 bridges). Each runs two scenes of 36 spheres in a box of
-# walls, one of ViscElMat (Law2_ScGeom_ViscElPhys_Basic, no damping) and one of dry FrictMat
-# (Law2_ScGeom_FrictPhys_CundallStrack, damping 0.2), with gravity and random initial velocities:
-# 300 steps, positions, orientations, velocities, angular velocities, forces and torques every 25 steps; then dict()
-# of every body, material, interaction and engine, pickling, YADE's C++ utils functions, the XML that
-# O.save writes and O.sceneToString's archive, the round trip through O.load (the loaded scene's dict() and
-# the XML that O.save writes of it) and 100 more steps from the loaded scene. Everything must be equal bit for bit
-# (floats compared exactly); the run is on one thread, where YADE is deterministic.
+# every patch, its PendularLoop keeping records of the 7 bridges). Each then runs two scenes of 36
+# spheres in a closed box of walls, one of ViscElMat (Law2_ScGeom_ViscElPhys_Basic, no damping) and one
+# of dry FrictMat (Law2_ScGeom_FrictPhys_CundallStrack, damping 0.2), compressed, with gravity and random
+# initial velocities: 300 steps, with positions, orientations, velocities, angular velocities, forces
+# and torques every 25 steps; then dict() of every body, material, interaction and engine, pickling,
+# YADE's C++ utils functions, the XML that O.save writes and O.sceneToString's archive (the scene's
+# speed, measured in wall-clock time, left out), the round trip through O.load (the loaded scene's
+# dict() and the XML that O.save writes of it) and 100 more steps from the loaded scene. Everything
+# must be equal bit for bit (floats compared by their bits); the runs are on one thread, where YADE is
+# deterministic.
 import os
 import pickle
 import random
