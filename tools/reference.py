@@ -249,9 +249,11 @@ def _scene_section():
 def markdown(classes=None):
     """The page docs/reference.md: every class of `classes` (default: plugin_classes()), then the
     helpers of yade_capillary.scene. Ends with exactly one newline."""
-    # Importing yade_capillary.scene wraps some of the plugin's methods (yade_capillary.objects.guard), which
-    # notes it in their docstrings: the page shows them so, whether or not the caller imported it already.
-    import yade_capillary.scene  # noqa: F401
+    # yade_capillary.patches wraps some of the plugin's methods and notes it in their docstrings: the page
+    # shows them so, whether or not the caller installed the patches already.
+    from yade_capillary import patches
+
+    patches.install()
 
     classes = _sorted(classes if classes is not None else plugin_classes())
     r = _Renderer(classes)

@@ -50,7 +50,7 @@ public:
 	// adds the liquid of the bridges broken in the step to the films. Throws std::invalid_argument if
 	// a bridge could not be built (after settling all others, so that no liquid is lost).
 	void settleFilms(Scene* scene);
-	// The Python paths that remove bodies or interactions (wrapped by pendular::guardOmega, PythonSide.hpp):
+	// The Python paths that remove bodies or interactions (wrapped by pendular::installGuards, PythonSide.hpp):
 	// releasePair breaks an active bridge as at rupture, its liquid to the two films (O.interactions.erase
 	// and clear); eraseBody breaks the body's bridges and moves its film to liquidRemoved, with its clump's
 	// members if clumpMembers (O.bodies.erase); clearBodies moves all liquid to liquidRemoved

@@ -9,6 +9,7 @@
 
 #include <mpi.h>
 
+#include <atomic>
 #include <iostream>
 #include <stdexcept>
 
@@ -41,6 +42,11 @@ void PendularCheck::action()
 	// A new bound (or a new engine after O.load): the step's reports were made with the old one.
 	const bool fresh = !(alarmBound == maxOverlap) || alarmBodies != scene->bodies->size();
 	bool newPair = false; // a pair of a new smallest critical time step
+	static std::atomic<bool> unguardedWarned { false };
+	if (!pendular::guardsInstalled() && !unguardedWarned.exchange(true))
+		LOG_WARN("yade_capillary.patches.install() has not run in this process (yade_capillary.scene.engines() runs it): an error of PendularCheck "
+		         "raised in O.run's thread may be missed by O.wait(), O.bodies.erase/clear and O.interactions.erase/clear do not account for the "
+		         "liquid they remove, PendularIntegrator does not see later changes of its NewtonIntegrator's parameters, and PendularLoop keeps no records");
 	for (const auto& engine : scene->engines) {
 		if (engine.get() == this && !loopSeen)
 			message = "PendularCheck must come after the interaction loop in O.engines (it settles the liquid of the step's bridges and raises "

@@ -39,10 +39,12 @@ public:
 		"materials with different models or a bridge outside its model's domain, and warns (once per value of O.dt) when O.dt "
 		"exceeds dtSafety times the smallest two-body critical time step of the interactions created so far. Place it right "
 		"after the InteractionLoop (yade_capillary.scene.engines does). Without it, an input error stops the simulation at the "
-		"end of the step and is logged. The plugin wraps Omega.run and Omega.wait so that they raise the error also when it "
-		"stopped the simulation thread before YADE's wait() looked (which then returns without it). With liquid='film' it also "
-		"forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
-		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms). O.bodies.erase and clear, O.interactions.erase and clear are wrapped to account for the liquid they remove.",
+		"end of the step and is logged. installGuards (called by yade_capillary.patches.install, which yade_capillary.scene.engines "
+		"calls) wraps Omega.run and Omega.wait so that they raise the error also when it "
+		"stopped the simulation thread before YADE's wait() looked (which then returns without it), and O.bodies.erase and clear, "
+		"O.interactions.erase and clear to account for the liquid they remove; it warns at its first step when they are not wrapped. "
+		"With liquid='film' it also forms the bridges asked for in the step and moves the liquid of broken bridges to the films "
+		"(Law2_ScGeom_PendularPhys_Bridge.settleFilms).",
 		((Real, dtSafety, 0.3, , "Warn when O.dt > dtSafety * criticalDt [-], (0, 1]. 0.3 ~ 1/sqrt(12): a sphere with 12 contacts can have a highest frequency up to sqrt(12) times that of one contact (Gershgorin's bound)."))
 		((Real, criticalDt, std::numeric_limits<Real>::infinity(), Attr::readonly, "Smallest two-body critical time step of the interactions created so far [s] (see Ip2_PendularMat_PendularMat_PendularPhys.criticalDt: with the viscous forces of the pair's bridge, in film mode of the largest bridge it can form); inf before the first."))
 		((Vector2i, criticalPair, Vector2i(-1, -1), Attr::readonly, "The two bodies of the interaction that has criticalDt [-]; (-1, -1) before the first."))
@@ -53,8 +55,8 @@ public:
 		((long, nOverlaps, 0, Attr::readonly, "Number of contact-steps whose overlap exceeded maxOverlap times the pair's smaller radius [-] (pairs of two bodies that do not move are not counted)."))
 		((Real, largestOverlap, 0, Attr::readonly, "Largest overlap counted in nOverlaps, divided by the pair's smaller radius [-]; 0 if none.")),
 		/*ctor*/,
-		/*py: pasted after `(void)_classObj` in pyRegisterClass(_scope), _scope being yade.wrapper*/
-		; pendular::guardOmega(_scope)
+		.def("installGuards", &pendular::installGuards, "Wrap Omega.run, Omega.wait, O.bodies.erase and clear, O.interactions.erase and clear (once per process; see the class). yade_capillary.patches.install calls it.")
+		.staticmethod("installGuards")
 	);
 	// clang-format on
 };

@@ -10,6 +10,7 @@
 #include <boost/python/exception_translator.hpp>
 #include <boost/python/raw_function.hpp>
 #include <boost/weak_ptr.hpp>
+#include <atomic>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -33,7 +34,7 @@ namespace {
 	// simulation thread and its first isRunning() check (under load, the erroneous first step is
 	// over by then), and in O.run(); ...; O.wait() whenever the step fails before O.wait(). So an
 	// error raised in the simulation thread is also kept here as undelivered, and Omega.run and
-	// Omega.wait are wrapped (guardOmega) to raise it when YADE's own wait() returned without it.
+	// Omega.wait are wrapped (installGuards) to raise it when YADE's own wait() returned without it.
 	struct Raised {
 		std::string            message;             // of the last error raised by a PendularCheck
 		bool                   undelivered = false; // raised in the simulation thread, not yet given to Python
@@ -72,10 +73,11 @@ namespace {
 		}
 		throw std::invalid_argument(message);
 	}
-	// Omega.run and Omega.wait of yade.wrapper before guardOmega wrapped them (never freed: they
+	// Omega.run and Omega.wait of yade.wrapper before installGuards wrapped them (never freed: they
 	// must not be released after the interpreter is finalized).
-	py::object* yadeRun  = nullptr;
-	py::object* yadeWait = nullptr;
+	py::object*       yadeRun  = nullptr;
+	py::object*       yadeWait = nullptr;
+	std::atomic<bool> guarded { false }; // installGuards has run
 
 	py::object guardedRun(py::tuple args, py::dict kw) // Omega.run(self, nSteps=-1, wait=False)
 	{
@@ -156,10 +158,12 @@ void pendular::rememberRaised(const std::string& message, Scene* loop)
 	raised.iter = loop->iter;
 }
 
-void pendular::guardOmega(boost::python::object wrapper)
+bool pendular::guardsInstalled() { return guarded; }
+
+void pendular::installGuards()
 {
 	if (yadeRun) return;
-	py::object omega = wrapper.attr("Omega");
+	py::object wrapper = py::import("yade.wrapper"), omega = wrapper.attr("Omega");
 	yadeRun          = new py::object(omega.attr("run"));
 	yadeWait         = new py::object(omega.attr("wait"));
 	py::object run = py::raw_function(guardedRun, 1), wait = py::raw_function(guardedWait, 1);
@@ -180,6 +184,7 @@ void pendular::guardOmega(boost::python::object wrapper)
 	wrap(wrapper.attr("BodyContainer"), "clear", yadeClear, guardedClear, note);
 	wrap(wrapper.attr("InteractionContainer"), "erase", yadeIntrErase, guardedIntrErase, note);
 	wrap(wrapper.attr("InteractionContainer"), "clear", yadeIntrClear, guardedIntrClear, note);
+	guarded = true;
 }
 
 } // namespace yade

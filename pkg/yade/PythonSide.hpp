@@ -14,8 +14,10 @@ namespace pendular {
 	void rememberRaised(const std::string& message, Scene* loop);
 	// Wraps yade.wrapper's Omega.run and Omega.wait, once, so that they raise an error of a step that
 	// YADE's wait() missed, and the erase and clear of BodyContainer and InteractionContainer, so that
-	// the liquid they remove is accounted for. Called when YADE registers PendularCheck in yade.wrapper
-	// (`wrapper`), after those classes.
-	void guardOmega(boost::python::object wrapper);
+	// the liquid they remove is accounted for. Called by yade_capillary.patches.install (through
+	// PendularCheck.installGuards), which lists every patch of YADE's Python objects.
+	void installGuards();
+	// Whether installGuards has run in this process (read by the simulation thread).
+	bool guardsInstalled();
 } // namespace pendular
 } // namespace yade

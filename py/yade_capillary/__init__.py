@@ -4,7 +4,7 @@ Public modules:
     kernels  -- the pure capillary bridge models (C++, pybind11): force, bridge, rupture_distance
     cases    -- case tables (Gladkyy & Schwarze 2014, Table 1; Elskamp & Kruggel-Emden 2018, Fig. 5a, 5b)
     scene    -- helpers that build YADE engine lists for the plugin's functors (inside yade only)
-    objects  -- keeps I.geom and I.phys current while PendularLoop computes from its records (inside yade only)
+    patches  -- every patch of YADE's Python objects, what each guards, and install() (engines() calls it; inside yade only)
     twosphere -- two-sphere and sphere-wall pull-offs, also viscous at constant speed (inside yade only)
     liquid   -- liquid accounting of film mode by population, CSV and VTK output
     mpi      -- YADE's MPI module (yade.mpy) with the plugin: slabs of ranks, liquid totals over the ranks (inside yade only)

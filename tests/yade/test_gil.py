@@ -2,7 +2,7 @@
 # GIL while they wait for the step in progress to end; PendularIntegrator read its NewtonIntegrator's
 # parameters and wrote the collider's flag through Python at every step, a step could wait for the GIL
 # forever (after O.pause(); O.wait(); O.reset()). So the parameters are read before O.run and after a
-# NewtonIntegrator attribute is set (PendularIntegrator.refresh, objects.guard), and the flag is written into
+# NewtonIntegrator attribute is set (PendularIntegrator.refresh, yade_capillary.patches), and the flag is written into
 # the object directly.
 # - While the main thread holds the GIL in one long C call (a sum over a range: the GIL is handed over
 #   rarely), a run in the background goes on at least 0.3 times as fast as while the main thread sleeps
