@@ -43,10 +43,11 @@ case "$cmd" in
   test) shift; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" "$@" ;;
   bench)
     Y="$BUILD_DIR/yade-capillary"
+    export BUILD_DIR  # bench/benchmark.py runs $BUILD_DIR/core_latency
     rm -rf "$BUILD_DIR/bench" && mkdir -p "$BUILD_DIR/bench"  # cells prepared by this build
-    "$Y" -j1 -n -x scripts/benchmark_packing.py
-    for config in ci validation_probe; do "$Y" -j2 -n -x scripts/benchmark_shear_cell.py $config 1000 "$BUILD_DIR/bench/$config.yade.gz"; done
-    "$Y" -j2 -n -x scripts/benchmark_gladkyy_probe.py ;;
+    "$Y" -j1 -n -x bench/benchmark_packing.py
+    for config in ci validation_probe; do "$Y" -j2 -n -x bench/benchmark_shear_cell.py $config 1000 "$BUILD_DIR/bench/$config.yade.gz"; done
+    "$Y" -j2 -n -x bench/benchmark_gladkyy_probe.py ;;
   install)
     [[ -f "$BUILD_DIR/CPackConfig.cmake" ]] || { echo "no package rules in $BUILD_DIR: Debian's yade is not installed with dpkg"; exit 1; }
     rm -rf "$BUILD_DIR/deb"  # one .deb only, of this build

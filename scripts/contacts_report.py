@@ -9,7 +9,9 @@ import json
 import os
 import sys
 
-from yade_capillary import cellanalysis, shearcell
+from yade_capillary import shearcell
+
+from studies import cell_contacts
 
 dirs = sys.argv[1:] or sorted(os.path.dirname(p) for p in glob.glob("data/shear_cell_runs/*/*/contacts_vs_a.csv"))
 print("| run | a_crit [mm] | in contact | bin at a = 0 | short bridges | long bridges | short share | band/outside: contact, short, long "
@@ -17,7 +19,7 @@ print("| run | a_crit [mm] | in contact | bin at a = 0 | short bridges | long br
 print("|---|---|---|---|---|---|---|---|---|")
 for d in dirs:
     try:
-        g = cellanalysis.gap_classes(os.path.join(d, "contacts_vs_a.csv"))
+        g = cell_contacts.gap_classes(os.path.join(d, "contacts_vs_a.csv"))
     except ValueError as e:
         print("(skipped: %s)" % e, file=sys.stderr)
         continue
@@ -29,7 +31,7 @@ for d in dirs:
         run = json.load(f)
     liquid = shearcell.ALL_CASES[run["case"]]
     if liquid["wet"]:
-        fm = cellanalysis.force_against_model(os.path.join(d, "contacts_vs_a.csv"), liquid["model"], run["cfg"]["R"], liquid["Vb"], liquid["gamma"],
+        fm = cell_contacts.force_against_model(os.path.join(d, "contacts_vs_a.csv"), liquid["model"], run["cfg"]["R"], liquid["Vb"], liquid["gamma"],
                                               liquid["theta"])
         print(" %.4f, %.4f (%d bins) |" % (fm["median"], fm["weighted_mean"], fm["bins"]))
     else:
@@ -52,7 +54,7 @@ if pairs:
         with open(os.path.join(d, "run.json")) as f:
             R = json.load(f)["cfg"]["R"]
         try:  # fixed bins with an edge at a = 0: the reduced snapshots of the Gladkyy-size runs
-            rows = cellanalysis.count_ratio_vs_gap(os.path.join(d, "contacts_vs_a.csv"), dry, [g * R for g in GAPS_OVER_R])
+            rows = cell_contacts.count_ratio_vs_gap(os.path.join(d, "contacts_vs_a.csv"), dry, [g * R for g in GAPS_OVER_R])
         except ValueError as e:
             print("(skipped: %s)" % e, file=sys.stderr)
             continue

@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
-# Unequal contact angles (issue 11 item 6): the mean of the cosines (Elskamp 2018 eq. 14, 15)
+# Unequal contact angles: the mean of the cosines (Elskamp 2018 eq. 14, 15)
 # against the cosine of the mean angle (the kernels before this comparison), both against the exact Young-Laplace
 # solver, for Elskamp's glass-steel and POM-PVC pairs, sphere-wall and sphere-sphere. Plain python3:
 #   PYTHONPATH=build/python /usr/bin/python3 scripts/mixed_angles.py [outdir]
 # Writes summary.csv, curves.csv, comparison.csv, derjaguin.csv, mixed_angles.png
-# (default results/mixed_angles). See yade_capillary/mixedangles.py.
+# (default results/mixed_angles). See studies/mixedangles.py.
 import os
 import sys
 
-from yade_capillary import mixedangles
+from studies import mixedangles
 
 outdir = sys.argv[1] if len(sys.argv) > 1 else os.path.join("results", "mixed_angles")
 summary, derj, text = mixedangles.run(outdir)

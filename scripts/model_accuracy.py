@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 # Error of every model and rupture rule against the exact Young-Laplace solver, and cost per
 # evaluation (Google Benchmark). Plain python3:
-#   PYTHONPATH=build/python python3 scripts/model_accuracy.py [outdir] [--quick]
+#   PYTHONPATH=build/python /usr/bin/python3 scripts/model_accuracy.py [outdir] [--quick]
 # Writes errors.csv, rupture.csv, summary.csv, costs.csv, summary.md, pareto.png
 # (default results/model_accuracy). --quick: 12 grid points and short timings (CI).
 import os
 import sys
 
-from yade_capillary import accuracy
+from studies import accuracy
 
 args = [a for a in sys.argv[1:] if not a.startswith("--")]
 quick = "--quick" in sys.argv

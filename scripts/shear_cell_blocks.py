@@ -1,4 +1,4 @@
-# The scatter of shear-cell fits over time (cellanalysis.block_fits): a run's snapshots in BLOCKS
+# The scatter of shear-cell fits over time (studies/cell_fits.py, block_fits): a run's snapshots in BLOCKS
 # consecutive blocks (default 3), each fitted on its own; prints mu and c (and the band) per block with
 # the standard error of their mean, and writes RUNDIR/blocks.json. Each snapshot is reduced once to its
 # CG fields (cg_NNN.npz in KEEP, default RUNDIR; kept so that the blocks can be refitted without the
@@ -8,12 +8,12 @@ import json
 import os
 import sys
 
-from yade_capillary import cellanalysis
+from studies import cell_fits
 
 rundir = sys.argv[1]
 blocks = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 keep = sys.argv[3] if len(sys.argv) > 3 else None
-out = cellanalysis.block_fits(rundir, blocks, keep)
+out = cell_fits.block_fits(rundir, blocks, keep)
 with open(os.path.join(rundir if keep is None else keep, "blocks.json"), "w") as f:
     json.dump(out, f, indent=1, default=float)
 for b in out["blocks"]:

@@ -1,4 +1,4 @@
-# The cohesion of wet shear-cell runs against the dry run of the same cell (cellanalysis.excess_shear):
+# The cohesion of wet shear-cell runs against the dry run of the same cell (studies/cell_fits.py, excess_shear):
 # at each height of the wet band, tau_wet - tau_dry at the same pressure, and the intercept of the wet
 # points with Gladkyy's slope mu = 0.13. Plain python3, from the runs' profiles.csv:
 #   PYTHONPATH=build/python /usr/bin/python3 scripts/shear_cell_excess.py DRY WET_DIR [WET_DIR ...]
@@ -10,7 +10,7 @@ import sys
 
 import numpy as np
 
-from yade_capillary import cellanalysis
+from studies import cell_fits
 
 if len(sys.argv) < 3:
     raise SystemExit("usage: shear_cell_excess.py DRY WET_DIR [WET_DIR ...]")
@@ -22,7 +22,7 @@ if not os.path.exists(dry):
     dry = (fit["mu"], fit["c_Pa"], base["p_min_Pa"], base["p_max_Pa"])
     print("dry band: the line of %s/fits.json, tau = %.4f p + %.3f Pa over %.2f-%.2f Pa" % ((sys.argv[1],) + dry))
 for wet_dir in sys.argv[2:]:
-    e = cellanalysis.excess_shear(os.path.join(wet_dir, "profiles.csv"), dry)
+    e = cell_fits.excess_shear(os.path.join(wet_dir, "profiles.csv"), dry)
     np.savetxt(os.path.join(wet_dir, "excess_shear.csv"), np.array(e["rows"]), delimiter=",", comments="",
                header="z_m,p_Pa,tau_Pa,tau_dry_at_p_Pa,excess_Pa")
     print("%s against %s: excess %.3f Pa (low p %.3f, high p %.3f); c with mu = %.2f: %.3f +- %.3f Pa"

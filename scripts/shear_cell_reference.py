@@ -2,7 +2,7 @@
 # every liquid case, several seeds; stores mean and seed-to-seed standard deviation of mu, c, Rc
 # and the torque on the rotating walls, and the command line. The CI regression (tests/yade/test_shear_cell_ci.py) compares its own
 # run (seed 1) with these values within 4 standard deviations.
-# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py [nseeds]   (about 2.5 min per seed)
+# Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py [nseeds]   (about 1 min per seed)
 import json
 import os
 import sys
@@ -10,11 +10,10 @@ import tempfile
 
 import numpy as np
 
-import yade_capillary
 from yade_capillary import cellanalysis, shearcell
 
 nseeds = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(yade_capillary.__file__))))  # __file__ is yade's launcher here; the package in build/python links to py/
+root = os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0])))  # yade puts the script's path in sys.argv[0]
 work = tempfile.mkdtemp(prefix="shear_cell_ref_")
 values = {}
 for case in shearcell.CASES:

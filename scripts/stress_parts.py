@@ -1,8 +1,8 @@
 # Where the wet band's excess shear stress over the dry material comes from, in Gladkyy's cell at his
 # scale: for saved states of complete runs (committed state.npz, taken from git by commit), one step from
 # the state, then the band's stress split into the separated bridges, the contacts and the kinetic part
-# (cellanalysis.stress_parts), and the excess over the dry line tau - (c + mu p) split the same way
-# (cellanalysis.band_decomposition; the band of each run is that of its complete fit, the dry line that of
+# (studies/cell_stress_parts.py, stress_parts), and the excess over the dry line tau - (c + mu p) split the same way
+# (band_decomposition; the band of each run is that of its complete fit, the dry line that of
 # the dry run's fits.json). Writes OUT (CSV, one row per state, rewritten after each) and prints it as a
 # markdown table.
 # Run:  build/yade-capillary -j1 -n -x scripts/stress_parts.py OUT.csv CASE@COMMIT [CASE@COMMIT ...]
@@ -17,7 +17,10 @@ import tempfile
 import numpy as np
 from yade import O
 
-from yade_capillary import cellanalysis, shearcell
+from yade_capillary import shearcell
+
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # yade does not put the script's folder on sys.path
+from studies import cell_stress_parts  # noqa: E402
 
 root = os.path.join("data", "shear_cell_runs", "gladkyy_size")
 if len(sys.argv) < 3:
@@ -33,7 +36,7 @@ with open(os.path.join(root, "dry", "fits.json")) as f:
     dry = json.load(f)
 dry_line = (dry["mu"], dry["c_Pa"])
 
-bands = {}  # case: its band nodes (cellanalysis.run_band), fitted once
+bands = {}  # case: its band nodes (cell_stress_parts.run_band), fitted once
 rows = []
 with tempfile.TemporaryDirectory() as tmp:
     for spec in specs:
@@ -45,11 +48,11 @@ with tempfile.TemporaryDirectory() as tmp:
         O.step()  # the forces of the saved state
         snap = os.path.join(tmp, "snapshot.npz")
         shearcell.snapshot(snap, info)
-        parts = cellanalysis.stress_parts(dict(np.load(snap)), info["cfg"])
+        parts = cell_stress_parts.stress_parts(dict(np.load(snap)), info["cfg"])
         row = {"case": case, "commit": commit, "step": info["done_steps"], "t_s": info["t_offset_s"]}
         if case not in bands:
-            bands[case] = cellanalysis.run_band(os.path.join(root, case))
-        row.update(cellanalysis.band_decomposition(parts, bands[case], dry_line))
+            bands[case] = cell_stress_parts.run_band(os.path.join(root, case))
+        row.update(cell_stress_parts.band_decomposition(parts, bands[case], dry_line))
         rows.append(row)
         with open(out_path, "w", newline="") as f:  # after every state: a run stopped early keeps its rows
             w = csv.DictWriter(f, fieldnames=list(rows[0]))

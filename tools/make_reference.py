@@ -1,10 +1,11 @@
 # Writes the class reference docs/reference.md from the docstrings of the build (see
-# py/yade_capillary/reference.py); tests/yade/test_reference.py fails when the committed page is stale.
+# tools/reference.py); tests/yade/test_reference.py fails when the committed page is stale.
 # Run:  build/yade-capillary -n -x tools/make_reference.py [output]     (default <repo>/docs/reference.md)
 import os
 import sys
 
-from yade_capillary import reference
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # tools/reference.py; yade does not put the script's folder on sys.path
+import reference  # noqa: E402
 
 root = os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0])))
 out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "docs", "reference.md")

@@ -1,5 +1,5 @@
 // Capillary bridge models: per-bridge invariants, domains, extrapolation, the model table.
-// Conventions and traps: ../shared/notes/capillary-models.md.
+// Conventions (units, the size ratio, the mean contact angle, V*) and their sources: docs/models.md, "Conventions".
 #include "models.hpp"
 
 #include <algorithm>

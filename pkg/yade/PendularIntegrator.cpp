@@ -189,21 +189,7 @@ void PendularIntegrator::action()
 	bool              fatal   = false;
 	const std::string why     = unsupported(p, threads, fatal);
 	if (fatal) PendularCheck::raiseInStep(scene, why);
-	// The velocities left to this step by the PendularRotationEngines before it (takeTurn), those still alive in
-	// O.engines (an engine removed or made dead after a failed step that had left them is not applied on its retry).
-	if (turns.scene != scene || turns.iter != scene->iter) turns.engines.clear();
-	turns.engines.erase(std::remove_if(turns.engines.begin(), turns.engines.end(),
-	                                   [this](const PendularRotationEngine* e) {
-		                                   return std::none_of(scene->engines.begin(), scene->engines.end(),
-		                                                       [e](const shared_ptr<Engine>& o) { return o.get() == e && !o->dead; });
-	                                   }),
-	                    turns.engines.end());
-	const bool turning = !turns.engines.empty();
 	if (!why.empty()) {
-		if (turning)
-			for (PendularRotationEngine* e : turns.engines)
-				e->turnNow(); // their ids were checked when they left the step
-		turns.engines.clear();
 		if (why != handedOverBecause) LOG_INFO("PendularIntegrator: the NewtonIntegrator does the step (" << why << ")");
 		handedOverBecause = why;
 		++nHandedOver;
@@ -213,12 +199,7 @@ void PendularIntegrator::action()
 		return;
 	}
 	const auto start = std::chrono::steady_clock::now();
-	std::vector<PendularRotationEngine::Motion> motions;
-	if (turning)
-		for (const PendularRotationEngine* e : turns.engines)
-			motions.push_back(e->motion(scene->dt));
-	const Real flag = integrate(p, *bodies, threads, turning ? turnerOf(long(bodies->states.size())) : nullptr, motions.data());
-	turns.engines.clear();
+	const Real flag = integrate(p, *bodies, threads);
 	bodiesTime += Real(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
 	if (flagOffset >= 0) {
 		std::memcpy(reinterpret_cast<char*>(newton.get()) + flagOffset, &flag, sizeof(Real));
@@ -233,30 +214,11 @@ void PendularIntegrator::action()
 	}
 }
 
-const int* PendularIntegrator::turnerOf(long n)
-{
-	bool same = turnedBy == turns.engines && long(turnerIndex.size()) == n;
-	for (size_t k = 0; same && k < turnedBy.size(); ++k)
-		same = turnedIds[k] == turnedBy[k]->ids;
-	if (!same) {
-		turnedBy = turns.engines;
-		turnedIds.clear();
-		turnerIndex.assign(size_t(n), -1);
-		for (size_t k = 0; k < turnedBy.size(); ++k) {
-			turnedIds.push_back(turnedBy[k]->ids);
-			for (const Body::id_t id : turnedBy[k]->ids)
-				if (id >= 0 && id < n) turnerIndex[size_t(id)] = int(k);
-		}
-	}
-	return turnerIndex.data();
-}
-
 // NewtonIntegrator::action for a standalone body with spherical rotation in an aperiodic scene without
 // energy tracking, density scaling or mask, in its order of operations (the same numbers bit for bit:
 // tests/yade/test_integrator.py). Returns what NewtonIntegrator leaves in maxVelocitySq: the largest
 // over the bodies with a bound of 0.5 (still within its sweep length) or 2 (beyond: the collider runs).
-Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads, const int* turner,
-                                   const PendularRotationEngine::Motion* motions)
+Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads)
 {
 	const long          n      = long(bodies.states.size());
 	State* const*       states = bodies.states.data();
@@ -287,9 +249,6 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 		}
 		if (!states[id]) continue; // an erased body
 		State& s = *states[id];
-		// PendularRotationEngine's velocities (RotationEngine's operations), left to this pass: the same as
-		// its own step before this one, as nothing between them reads or changes the State.
-		if (turner && turner[id] >= 0) PendularRotationEngine::setVelocities(s, motions[turner[id]], dt);
 		const Vector3r f       = summed.forces ? summed.forces[id] : forces.getForce(Body::id_t(id));
 		const Vector3r m       = summed.forces ? summed.torques[id] : forces.getTorque(Body::id_t(id));
 		const unsigned blocked = s.blockedDOFs;

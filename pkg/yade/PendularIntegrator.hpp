@@ -4,7 +4,6 @@
 #pragma once
 
 #include "Passes.hpp"
-#include "PendularRotationEngine.hpp"
 #include "YadeHeaders.hpp"
 
 #include <core/GlobalEngine.hpp>
@@ -23,18 +22,6 @@ public:
 	void refresh();
 	// Called when a NewtonIntegrator's attribute changed (Python: its setters, wrapped by yade_capillary).
 	static void newtonChanged() { ++newtonVersion; }
-	// A PendularRotationEngine before this engine leaves it the velocities of this step (see its action): the
-	// pass sets them on each body just before it moves it (in the engines' order: the last one sets a body's).
-	void takeTurn(const Scene* s, PendularRotationEngine* e)
-	{
-		// A step retried after an error (the same iteration) starts its list again.
-		if (turns.scene != s || turns.iter != s->iter || std::find(turns.engines.begin(), turns.engines.end(), e) != turns.engines.end()) {
-			turns.engines.clear();
-			turns.scene = s;
-			turns.iter  = s->iter;
-		}
-		turns.engines.push_back(e);
-	}
 	DECLARE_LOGGER;
 
 private:
@@ -64,23 +51,8 @@ private:
 	static std::atomic<long> newtonVersion; // moved on by yade_capillary's setters of NewtonIntegrator's attributes
 	// Why this step cannot be done here ("" if it can); fatal: a scene the engine order makes wrong.
 	std::string unsupported(const Parameters& p, int threads, bool& fatal);
-	// NewtonIntegrator's maxVelocitySq after the step of the bodies in `bodies` (filled by unsupported); turner:
-	// per body, the index in turns.engines of the one that sets its velocities (-1: none), motions: theirs.
-	Real integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads, const int* turner,
-	               const PendularRotationEngine::Motion* motions);
-	// The PendularRotationEngines that left this step's velocities to this engine (takeTurn).
-	struct Turns {
-		const Scene*                         scene = nullptr;
-		long                                 iter  = -1;
-		std::vector<PendularRotationEngine*> engines;
-	};
-	Turns turns;
-	// Per body, the index in turns.engines of the last one whose ids hold it, else -1; made for turnedBy (the
-	// engines, their ids and the number of bodies it was made for) and kept while they stay the same.
-	const int*                           turnerOf(long n);
-	std::vector<int>                     turnerIndex;
-	std::vector<PendularRotationEngine*> turnedBy;
-	std::vector<std::vector<Body::id_t>> turnedIds;
+	// NewtonIntegrator's maxVelocitySq after the step of the bodies in `bodies` (filled by unsupported).
+	Real integrate(const Parameters& p, const pendular::BodyPointers& bodies, int threads);
 	// What findNewton found in the engine list it last scanned: the NewtonIntegrator; the PendularLoop before
 	// it if every engine between them is known to leave the bodies' objects and flags alone (see unsupported).
 	std::vector<boost::weak_ptr<Engine>> scannedEngines;

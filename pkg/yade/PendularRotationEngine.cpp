@@ -1,7 +1,6 @@
 #include "PendularRotationEngine.hpp"
 #include "Passes.hpp"
 #include "Pendular.hpp"
-#include "PendularIntegrator.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -34,50 +33,15 @@ void PendularRotationEngine::postLoad(PendularRotationEngine&)
 
 void PendularRotationEngine::action()
 {
-	// The PendularIntegrator after this engine, if only other PendularRotationEngines and the NewtonIntegrator
-	// (which PendularIntegrator requires dead) stand between them: nothing between reads or changes a State.
-	if (!pendular::sameEngines(scannedEngines, scene->engines)) {
-		integrator.reset();
-		newtons.clear();
-		bool following = false;
-		for (const auto& e : scene->engines) {
-			if (following) {
-				if (dynamic_cast<PendularIntegrator*>(e.get())) {
-					integrator = e;
-					break;
-				}
-				if (e && e->getClassName() == "NewtonIntegrator") newtons.push_back(e);
-				else if (!dynamic_cast<PendularRotationEngine*>(e.get()))
-					break;
-			}
-			following = following || e.get() == this;
-		}
-	}
-	const long n       = long(scene->bodies->body.size());
-	bool       leaving = integrator && !integrator->dead && !scene->subStepping && invalidId(n) < 0;
-	for (const auto& e : newtons)
-		leaving = leaving && e->dead;
-	if (leaving) {
-		static_cast<PendularIntegrator*>(integrator.get())->takeTurn(scene, this);
-		++nDeferred;
-		return;
-	}
 	const long invalid = turn();
 	if (invalid >= 0)
 		PendularCheck::raiseInStep(scene, "PendularRotationEngine: ids[" + std::to_string(invalid) + "] = " + std::to_string(ids[invalid])
-		                                  + " is not a body id (0 to " + std::to_string(n - 1) + ")");
+		                                  + " is not a body id (0 to " + std::to_string(long(scene->bodies->body.size()) - 1) + ")");
 }
 
 PendularRotationEngine::Motion PendularRotationEngine::motion(Real dt) const
 {
 	return Motion { rotationAxis * angularVelocity, Quaternionr(AngleAxisr(angularVelocity * dt, rotationAxis)), zeroPoint, rotateAroundZero };
-}
-
-long PendularRotationEngine::invalidId(long n) const
-{
-	for (long k = 0; k < long(ids.size()); ++k)
-		if (ids[k] < 0 || ids[k] >= n) return k;
-	return -1;
 }
 
 long PendularRotationEngine::turn()

@@ -16,14 +16,18 @@ Contact stress: sigma_c = sum over contacts of F (x) l * integral_0^1 K(x_I + s 
 the branch vector from I to P and F the force on P (Goldhirsch 2010); the line integral is
 evaluated with Gauss-Legendre nodes. For a contact with a wall or a fixed particle, pass the
 contact point as x_I: the integral then runs from the flowing particle to the contact point.
+
+Kinetic stress: sum m v' (x) v' K with v' = v - V the velocity fluctuation about the streaming
+velocity V = j / rho at the field point (Goldhirsch 2010; Weinhart et al. 2012), computed as
+K - j (x) j / rho from the momentum flux K = sum m v (x) v K (kinetic_stress).
 """
 import numpy as np
 from threadpoolctl import threadpool_limits
 
 GAUSS_NODES = 8
 # The kernel is cut at CUTOFF widths in r and in z (there it is at most e^-18 = 1.5e-8 of its peak): a point
-# contributes to the nodes of a window around it only, so that a Gladkyy-size snapshot (3.5e5 contacts, 1.2e4
-# nodes) takes seconds instead of hours.
+# contributes to the nodes of a window around it only, so that the cost grows with the points, not with points
+# times nodes (a Gladkyy-size snapshot has 3.5e5 contacts and 1.2e4 nodes).
 CUTOFF = 6.0
 
 
@@ -86,8 +90,8 @@ class Grid:
         touch, key = touch[order], key[order]
         starts = np.flatnonzero(np.r_[True, key[1:] != key[:-1]]) if len(key) else np.zeros(0, np.int64)
         padded = np.zeros((nr + 4 * hr, nz + 4 * hz, nf))  # node (i, k) at (i + 2 hr, k + 2 hz): every window fits
-        # The products are small (window x points x window fields): BLAS threads only wait for each other,
-        # five times slower on a machine whose cores are busy; one thread also fixes the order of the sums.
+        # The products are small (window x points x window fields): BLAS threads would only wait for each
+        # other; one thread also fixes the order of the sums.
         with threadpool_limits(limits=1, user_api="blas"):
             for a, b in zip(starts, np.r_[starts[1:], len(key)]):
                 m = touch[a:b]
@@ -147,16 +151,22 @@ def contact_stress(grid, xP, xI, F):
     return grid.accumulate(np.hypot(p[..., 0], p[..., 1]).ravel(), p[..., 2].ravel(), weights.reshape(-1, 9)).reshape((3, 3) + grid.R.shape)
 
 
-def kinetic_stress(grid, x, v, m, omega_at):
-    """Kinetic stress sum m v' (x) v' K [Pa], v' = v - omega(r_i, z_i) r_i e_theta.
-
-    omega_at(r, z): the mean angular velocity at the particles (e.g. interpolated CG field).
-    """
+def momentum_flux(grid, x, v, m):
+    """Kinetic momentum flux density K = sum m v (x) v K(r; r_i) [Pa], cylindrical components, shape (3, 3, nr, nz)."""
     x, v, m = np.atleast_2d(x), np.atleast_2d(v), np.asarray(m, float)
-    r, z = np.hypot(x[:, 0], x[:, 1]), x[:, 2]
     vc = to_cylindrical(v, x)
-    vc[:, 1] -= omega_at(r, z) * r
-    return grid.accumulate(r, z, np.einsum("i,ia,ib->iab", m, vc, vc).reshape(len(m), 9)).reshape((3, 3) + grid.R.shape)
+    return grid.accumulate(np.hypot(x[:, 0], x[:, 1]), x[:, 2], np.einsum("i,ia,ib->iab", m, vc, vc).reshape(len(m), 9)).reshape((3, 3) + grid.R.shape)
+
+
+def kinetic_stress(rho, j, K):
+    """Kinetic stress [Pa] from the density rho, momentum density j and momentum flux K of the same kernel:
+    sum m v' (x) v' K(r; r_i) with v' = v_i - V(r) the fluctuation about the streaming velocity V = j / rho at
+    the field point (Goldhirsch2010, Weinhart2012), which is K - j (x) j / rho; 0 where there is no mass.
+    Given time-averaged rho, j and K, V is the streaming velocity of the averaged flow and the kinetic stress
+    holds the temporal fluctuations about it as well, the one that closes the averaged momentum balance."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv = np.where(rho > 0, 1.0 / np.where(rho > 0, rho, 1.0), 0.0)
+    return K - np.einsum("a...,b...->ab...", j, j) * inv
 
 
 def pressure_and_shear_components(sigma):

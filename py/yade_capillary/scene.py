@@ -8,30 +8,32 @@ from yade.wrapper import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceR
                           Ip2_PendularMat_PendularMat_PendularPhys, Law2_ScGeom_PendularPhys_Bridge, NewtonIntegrator,
                           PendularCheck, PendularForceResetter, PendularIntegrator, PendularLoop, PendularMat)
 
-from . import objects
-
-objects.guard()  # before any PendularLoop keeps records (see objects.py)
+from . import patches
 
 LOOPS = ("fused", "standard")
 
 
-def interaction_loop(loop="fused", detection_factor=1.0, law_label="capillaryLaw"):
+def interaction_loop(loop="fused", detection_factor=1.0, law_label="capillaryLaw", records=True):
     """The interaction loop with the yade-capillary functors.
 
     loop: "fused" (PendularLoop: sphere-sphere pairs of PendularMat bodies in one fused pass, the
     same numbers as YADE's loop) or "standard" (YADE's InteractionLoop with the same functors).
-    detection_factor and law_label as in :func:`engines`.
+    detection_factor, law_label and records as in :func:`engines` (installs the patches as it does).
     """
     if loop not in LOOPS:
         raise ValueError("loop = %r is not one of %s (or an InteractionLoop instance)" % (loop, ", ".join(LOOPS)))
+    patches.install(records)
     functors = ([Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=detection_factor), Ig2_Facet_Sphere_ScGeom(),
                  Ig2_Wall_Sphere_ScGeom()],
                 [Ip2_PendularMat_PendularMat_PendularPhys()],
                 [Law2_ScGeom_PendularPhys_Bridge(label=law_label)])
-    return PendularLoop(*functors, label="interactionLoop") if loop == "fused" else InteractionLoop(*functors, label="interactionLoop")
+    if loop == "standard":
+        return InteractionLoop(*functors, label="interactionLoop")
+    return PendularLoop(*functors, label="interactionLoop", keepRecords=records)
 
 
-def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused", integrator="auto"):
+def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", detection_factor=1.0, loop="fused", integrator="auto",
+            records=True):
     """Return the usual engine list with the capillary law.
 
     gravity [m/s^2], damping: NewtonIntegrator's numerical damping [-] (0 for physical runs),
@@ -51,13 +53,23 @@ def engines(gravity=(0, 0, 0), damping=0.0, extra=(), law_label="capillaryLaw", 
     step for scenes it does not cover, see its docstring); "newton": YADE's NewtonIntegrator alone
     (needed for yade.mpy, which places its engines next to NewtonIntegrator); "auto" (default):
     "newton" under MPI (yade.mpy imported, or mpiexec with more than one process), else "pendular".
+    records: True (default): PendularLoop keeps its records (PendularLoop.keepRecords, its largest speed
+    gain), for which every patch of yade_capillary.patches is installed, including those that change
+    how YADE's Python objects of every material behave (see docs/design.md). False: the fused loop
+    (also one given as loop) keeps none, and only the patches of group ALWAYS are installed (the
+    plugin's own error delivery, liquid accounting, PendularIntegrator's parameters and the release
+    of a replaced scene's loop), which leave YADE's results and errors as they are; patches installed
+    earlier in the process stay. The same numbers, slower (docs/user-guide.md).
     """
     if integrator not in ("auto", "pendular", "newton"):
         raise ValueError("integrator: %r is not one of 'auto', 'pendular', 'newton'" % (integrator,))
     if integrator == "auto":
         integrator = "newton" if under_mpi() else "pendular"
+    patches.install(records)
     if isinstance(loop, str):
-        loop = interaction_loop(loop, detection_factor, law_label)
+        loop = interaction_loop(loop, detection_factor, law_label, records)
+    elif isinstance(loop, PendularLoop) and not records:
+        loop.keepRecords = False
     newton = NewtonIntegrator(gravity=gravity, damping=damping, dead=integrator == "pendular")
     return [
         PendularForceResetter() if isinstance(loop, PendularLoop) else ForceResetter(),

@@ -6,7 +6,7 @@ cylinder and the inner bottom stay. All walls are rough: a layer of fixed sphere
 radius (with particle friction 0, smooth walls would drag nothing). The full 360 degrees are
 simulated (YADE has no angular periodicity).
 
-Every parameter lives in CONFIGS and CASES; scripts only choose names.
+Every parameter lives in CONFIGS and CASES; scripts only choose names (or add configurations to CONFIGS).
 """
 import json
 import math
@@ -25,42 +25,18 @@ VALIDATION = dict(R=2.381e-3, rho=150.0, tc=5.4e-4, en=0.83, et=0.83, friction=0
 # the validation configuration. A regression check, not a physical prediction.
 CI = dict(VALIDATION, Ro=0.0495, Ri=0.0066, Rs=0.0383, H=0.018, period=10.0, settle_s=0.25, run_s=0.6, snapshots=20,
           snapshot_dt_s=0.015)
-# The validation cell for a short time: measures the speed and projects the cost of the full run.
-VALIDATION_PROBE = dict(VALIDATION, settle_s=0.2, run_s=0.2, snapshots=4, snapshot_dt_s=0.02)
-# The validation cell for the first 2 s of rotation (of Gladkyy's 5 s), averaged over the last 1 s:
-# what 3 hours on 2 cores allow for all three cases (about 1 h per case on one core).
-# It is prepared exactly like `validation`, so run(..., config="validation_2s") accepts a cell
-# prepared for either, and run() saves final.yade.gz to continue from.
-VALIDATION_2S = dict(VALIDATION, run_s=2.0, snapshots=10, snapshot_dt_s=0.1)
-# Continue a validation_2s run (its final.yade.gz) to 4 s and to Gladkyy's 5 s of rotation, averaged
-# over the continuation with Gladkyy's 0.25 s between snapshots (he averaged 15 snapshots over the
-# last 3.5 s of 5 s).
-VALIDATION_4S = dict(VALIDATION, run_s=2.0, snapshots=8, snapshot_dt_s=0.25)
-VALIDATION_5S = dict(VALIDATION, run_s=3.0, snapshots=12, snapshot_dt_s=0.25)
-# Continue a validation_5s run to 10 s of rotation (the run-length experiment of the cause analysis),
-# averaged over the last 3.5 s (6.5-10 s), Gladkyy's averaging window.
-VALIDATION_10S = dict(VALIDATION, run_s=5.0, snapshots=14, snapshot_dt_s=0.25)
 # Gladkyy's cell size: "nearly 200 000" spheres of R = 2.381 mm, about 168 000 flowing, i.e. the
-# validation cell (about 15 000 flowing) enlarged 2.2 times linearly; for speed probes.
+# validation cell (about 15 000 flowing) enlarged 2.2 times linearly.
 # Filled to 1.62 H instead of 1.4 H (see build): about 168 000 flowing spheres, which settle to about H;
 # with 1.4 H, 145 000 would settle to about 0.86 H (the validation cell settles to 37 of its 40 mm).
 GLADKYY_SIZE = dict(VALIDATION, Ro=2.2 * VALIDATION["Ro"], Ri=2.2 * VALIDATION["Ri"], Rs=2.2 * VALIDATION["Rs"], H=2.2 * VALIDATION["H"],
                     fill=1.62)
-# The ci cell at Gladkyy's time step, about tc/100 (he needed about 1e6 steps for 5 s at tc = 5.4e-4 s):
-# the time-step experiment of the cause analysis, compared with the ci references (tc/20).
-CI_DT100 = dict(CI, dt_over_tc=0.01)
 # Gravity of every cell [m/s^2] unless its configuration sets g.
 GRAVITY = 9.81
-# The validation cell under 2.2 g (5 s of rotation as Gladkyy): the pressures of a cell 2.2 times
-# taller (the Gladkyy-size cell), p ~ rho g depth, with the particles, bridges and band geometry of
-# the validation cell; the pressure-range experiment of the cause analysis (c is a capillary stress,
-# independent of g; only the range of p over which tau(p) is fitted grows). Prepared on its own.
-VALIDATION_G22 = dict(VALIDATION, g=2.2 * GRAVITY)
-CONFIGS = {"validation": VALIDATION, "ci_dt100": CI_DT100, "gladkyy_size": GLADKYY_SIZE, "validation_probe": VALIDATION_PROBE, "validation_2s": VALIDATION_2S,
-           "validation_4s": VALIDATION_4S, "validation_5s": VALIDATION_5S, "validation_10s": VALIDATION_10S, "ci": CI,
-           "validation_g22": VALIDATION_G22}
-# Configurations that start from the final state of another one's run of the same case.
-CONTINUES = {"validation_4s": "validation_2s", "validation_5s": "validation_2s", "validation_10s": "validation_5s"}
+# The configurations by name, as prepare() and run() take them. Add your own under a new name (a dict
+# like VALIDATION with some values changed, e.g. CONFIGS["mine"] = dict(VALIDATION, run_s=2.0)): one that
+# differs from a prepared cell's configuration in RUN_KEYS only runs from that cell (run(..., config=)).
+CONFIGS = {"ci": CI, "validation": VALIDATION, "gladkyy_size": GLADKYY_SIZE}
 # Keys that only control the run; all others describe the cell, its materials and its preparation.
 RUN_KEYS = ("run_s", "snapshots", "snapshot_dt_s")
 
@@ -156,7 +132,7 @@ def prepare(config, case, path, seed=None, log=print, checkpoint=None, save_ever
 
     seed: overrides the configuration's seed of the random filling (for seed-to-seed scatter).
     checkpoint: a save_state file written every `save_every_s` of wall time while the cell settles; if it
-    exists, settling continues from it (a Gladkyy-size cell settles for about 90 minutes on one core)."""
+    exists, settling continues from it (for cells whose settling takes longer than one sitting)."""
     import time
 
     from yade import O
@@ -205,8 +181,8 @@ def run_engines(info, loop="fused", integrator="pendular"):
 
     from .scene import engines
 
-    # With our loop and integrator, PendularRotationEngine (RotationEngine's velocities, bit for bit, made in
-    # the thread that owns the wall's bodies); else YADE's own engines, as its users set them up.
+    # With our loop and integrator, PendularRotationEngine (RotationEngine's velocities, bit for bit, with one
+    # rotation per step); else YADE's own engines, as its users set them up.
     ours = loop == "fused" and (integrator or "pendular") == "pendular"
     rotation = (PendularRotationEngine if ours else RotationEngine)(ids=info["rotating"], rotationAxis=(0, 0, 1),
                                                                     angularVelocity=2 * math.pi / info["cfg"]["period"],
@@ -287,12 +263,12 @@ class _Recorder:
     snapshot interval, the snapshots of the last `snapshots` intervals of a run of `steps` steps, and
     the progress. info["done_steps"] and info["next_snapshot"] carry a run over segments."""
 
-    def __init__(self, info, outdir, steps, log, reduce_dir=None):
+    def __init__(self, info, outdir, steps, log, reduce_dir=None, reduce_more=None):
         import time
 
         from yade import O
 
-        self.info, self.outdir, self.steps, self.log, self.reduce_dir = info, outdir, steps, log, reduce_dir
+        self.info, self.outdir, self.steps, self.log, self.reduce_dir, self.reduce_more = info, outdir, steps, log, reduce_dir, reduce_more
         cfg = info["cfg"]
         self.every = max(1, int(cfg["snapshot_dt_s"] / O.dt))
         self.snap_iters = snapshot_steps(cfg, O.dt)
@@ -343,7 +319,7 @@ class _Recorder:
             if self.reduce_dir is not None:  # its CG fields, kept where the next segment finds them
                 from . import cellanalysis
 
-                cellanalysis.reduce_snapshot(path, info["cfg"], os.path.join(self.reduce_dir, "cg_%03d.npz" % (k + 1)))
+                cellanalysis.reduce_snapshot(path, info["cfg"], os.path.join(self.reduce_dir, "cg_%03d.npz" % (k + 1)), more=self.reduce_more)
             self.log("  t = %.3f s, snapshot %d, torque rotating %.3e N m, static %.3e N m" % (_now(info), k + 1, rot, sta))
 
 
@@ -366,13 +342,14 @@ def _finish(info, outdir, T, steps, wall):
     return out
 
 
-def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.0, until_step=None, keep=None, log=print):
-    """One segment of a run too long for one sitting (Gladkyy's cell): continue keep/state.npz if it
-    exists, else start from the cell saved by save_state in `state_in` (a dry cell given the liquid of
-    `case`, as run(..., case=...)); run until the configuration's run_s is done or `budget_s` of wall
-    time has passed (or step `until_step` of the run is reached), saving keep/state.npz every
-    `save_every_s` and at the end. Torques are appended to keep/torque.csv; snapshots go to outdir as
-    in run(), each one also reduced to its CG fields in keep/cg_NNN.npz (cellanalysis.reduce_snapshot;
+def run_segment(state_in, outdir, case=None, budget_s=None, save_every_s=1200.0, until_step=None, keep=None, log=print, reduce_more=None):
+    """A run that may take several sittings (Gladkyy's cell), one segment per call: continue keep/state.npz
+    if it exists, else start from the cell saved by save_state in `state_in` (a dry cell given the liquid
+    of `case`, as run(..., case=...)); run until the configuration's run_s is done, or until `budget_s` of
+    wall time has passed (None: no limit), or until step `until_step` of the run is reached, saving
+    keep/state.npz every `save_every_s` of wall time and at the end. Torques are appended to
+    keep/torque.csv; snapshots go to outdir as in run(), each one also reduced to its CG fields in
+    keep/cg_NNN.npz (cellanalysis.reduce_snapshot, with `reduce_more` as its `more`;
     cellanalysis.analyse_reduced(keep) then fits the run when its snapshots were taken in several
     segments); when the run is complete, outdir and keep get run.json and outdir a copy of torque.csv.
     keep: the directory of what the next segment continues from (default outdir).
@@ -388,7 +365,7 @@ def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.
     continued = os.path.exists(state)
     info = load_state(state if continued else state_in, case=None if continued else case)
     steps = int(info["cfg"]["run_s"] / O.dt)
-    rec = _Recorder(info, outdir, steps, log, reduce_dir=keep)
+    rec = _Recorder(info, outdir, steps, log, reduce_dir=keep, reduce_more=reduce_more)
     O.engines = O.engines + [rec.engine(first=True)]
     torque_csv = os.path.join(keep, "torque.csv")
     if not continued and os.path.exists(torque_csv):
@@ -413,7 +390,7 @@ def run_segment(state_in, outdir, case=None, budget_s=6600.0, save_every_s=1200.
     end = steps + 1 if until_step is None else min(steps + 1, until_step)
     while rec.done() < end:  # at least one chunk of steps per segment
         O.run(min(chunk * 2, end - rec.done()), True)
-        if rec.wall() >= budget_s:
+        if budget_s is not None and rec.wall() >= budget_s:
             break
         if time.time() - last > save_every_s:
             save()
@@ -514,8 +491,7 @@ def load_state(path, case=None, loop="fused"):
     info["t_offset_s"] = info.pop("time_s")
     law = _law()
     frictional = cfg["friction"] > 0
-    # Each d[...] of an NpzFile decompresses its whole array: read every array once (indexing d["active"]
-    # per pair made rebuilding a Gladkyy-size state take 12 minutes).
+    # Each d[...] of an NpzFile decompresses its whole array: read every array once, not once per pair.
     pairs, active, shear, vel = d["pairs"], d["active"], d["shear"], d["vel"]
     # A save follows Newton's half of a step, so a bridge may have been stretched past its rupture distance
     # by that step (the law breaks it at the next one, as in the uninterrupted run): by at most the
@@ -592,119 +568,3 @@ def summary(fit):
     the magnitude of the torque on the rotating walls [N m] (mean of the second half of the run)."""
     rc = [r for r in fit["Rc_m"] if r is not None]
     return {"mu": fit["mu"], "c_Pa": fit["c_Pa"], "Rc_m": float(np.mean(rc)) if rc else None, "torque_Nm": abs(fit["torque_Nm"])}
-
-
-# Gladkyy & Schwarze 2014, section 4.2: tau = mu p + c in the band (gamma_dot > 0.12 1/s), all models.
-GLADKYY_2014 = {"dry": dict(mu=0.13, c_Pa=0.0), "wet13.6nl": dict(mu=0.13, c_Pa=1.3), "wet74.2nl": dict(mu=0.13, c_Pa=2.0)}
-GLADKYY_2014.update({case: GLADKYY_2014["wet13.6nl"] for case in MODEL_CASES})  # "no obvious influence" of the model
-
-
-def surface_band_centre(cfg):
-    """Band centre at the free surface [m], Rs [1 - (H/Rs)^(5/2)] (Fenistein, van de Meent & van Hecke 2004)."""
-    return cfg["Rs"] * (1 - (cfg["H"] / cfg["Rs"]) ** 2.5)
-
-
-def fmt_value(v, err=None, fmt="%.3f", scale=1.0):
-    """A table entry: v (and ± err) times scale in format fmt, "n/a" for a value that could not be had (None)."""
-    if v is None:
-        return "n/a"
-    return (fmt + " ± " + fmt) % (scale * v, scale * err) if err is not None else fmt % (scale * v)
-
-
-def report(config_dir, particles=200000, duration_s=5.0):
-    """Markdown and CSV comparison of every analysed case in config_dir (fits.json, run.json) with
-    Gladkyy 2014 and the surface law for Rc; the cost of a run of `particles` for `duration_s` is
-    projected from each case's measured speed at the configuration's time step. Writes
-    config_dir/report.md and report.csv; returns the Markdown."""
-    rows = []
-    for case in ALL_CASES:
-        d = os.path.join(config_dir, case)
-        if not os.path.exists(os.path.join(d, "fits.json")):
-            continue
-        with open(os.path.join(d, "fits.json")) as f:
-            fit = json.load(f)
-        with open(os.path.join(d, "run.json")) as f:
-            run_info = json.load(f)
-        cfg = run_info["cfg"]
-        rc = [(b["z_m"], b["Rc_m"], b["W_m"]) for b in fit["band_fits"] if b.get("Rc_m") is not None]  # not the heights whose fit failed
-        dt = cfg["dt_over_tc"] * cfg["tc"]
-        rows.append({
-            "case": case, "mu": fit["mu"], "mu_err": fit["mu_err"], "c_Pa": fit["c_Pa"], "c_err_Pa": fit["c_err_Pa"],
-            "mu_threshold": fit["mu_threshold"], "c_threshold_Pa": fit["c_Pa_threshold"], "band_points": fit["band_points"],
-            "band_points_threshold": fit["band_points_threshold"],
-            "Rc_top_mm": 1e3 * rc[-1][1] if rc else None, "z_top_mm": 1e3 * rc[-1][0] if rc else None,
-            "Rc_mean_mm": 1e3 * float(np.mean([r[1] for r in rc])) if rc else None,
-            "W_mean_mm": 1e3 * float(np.mean([r[2] for r in rc])) if rc else None,
-            "Rc_surface_law_mm": 1e3 * surface_band_centre(cfg),
-            "torque_rotating_Nm": fit["torque_Nm"], "torque_static_Nm": fit["torque_static_Nm"], "torque_cg_at_Rs_Nm": fit.get("torque_cg_at_Rs_Nm"),  # not from reduced snapshots
-            "mu_gladkyy": GLADKYY_2014[case]["mu"], "c_gladkyy_Pa": GLADKYY_2014[case]["c_Pa"],
-            "steps": run_info["steps"], "wall_s": run_info["wall_s"], "particle_steps_per_s": run_info["particle_steps_per_s"],
-            "rotation_s": cfg["run_s"], "projected_h": particles * duration_s / dt / run_info["particle_steps_per_s"] / 3600,
-        })
-    if not rows:
-        raise ValueError("config_dir: no analysed case (fits.json) in %s" % config_dir)
-    keys = list(rows[0])
-    with open(os.path.join(config_dir, "report.csv"), "w") as f:
-        f.write(",".join(keys) + "\n")
-        for r in rows:
-            f.write(",".join("" if r[k] is None else str(r[k]) for k in keys) + "\n")
-
-    md = ["| case | mu (Gladkyy) | c [Pa] (Gladkyy) | mu, c [Pa], gamma_dot threshold | Rc top / mean [mm] (surface law) | W mean [mm] | torque rotating / static / CG at Rs [mN m] | run |",
-          "|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        md.append("| %s | %s (%.2f) | %s (%.1f) | %s, %s (%d points) | %s / %s (%.1f) | %s | %s / %s / %s | %.1f s of rotation, %d steps, %.0f s, %.2g particle-steps/s; %d particles for %g s: %.0f h |" % (
-            r["case"], fmt_value(r["mu"], r["mu_err"]), r["mu_gladkyy"], fmt_value(r["c_Pa"], r["c_err_Pa"], "%.2f"), r["c_gladkyy_Pa"],
-            fmt_value(r["mu_threshold"]), fmt_value(r["c_threshold_Pa"], None, "%.2f"), r["band_points_threshold"],
-            fmt_value(r["Rc_top_mm"], None, "%.1f"), fmt_value(r["Rc_mean_mm"], None, "%.1f"), r["Rc_surface_law_mm"], fmt_value(r["W_mean_mm"], None, "%.1f"),
-            *(fmt_value(r[k], None, "%.2f", 1e3) for k in ("torque_rotating_Nm", "torque_static_Nm", "torque_cg_at_Rs_Nm")),
-            r["rotation_s"], r["steps"], r["wall_s"], r["particle_steps_per_s"], particles, duration_s, r["projected_h"]))
-    md += _variant_tables(config_dir)
-    text = "\n".join(md) + "\n"
-    with open(os.path.join(config_dir, "report.md"), "w") as f:
-        f.write(text)
-    return text
-
-
-def _variant_tables(config_dir):
-    """Markdown lines: mu and c of every case under each convention of the fit (fits.json
-    fit_variants), the torque balance of cylinders near the inner wall and up to the split
-    (torque_closure) and the contact numbers; empty for analyses without them."""
-    fits_by_case = {}
-    for case in ALL_CASES:
-        path = os.path.join(config_dir, case, "fits.json")
-        if os.path.exists(path):
-            with open(path) as f:
-                fits_by_case[case] = json.load(f)
-    out = []
-    have = [c for c, f in fits_by_case.items() if f.get("fit_variants")]
-    if have:
-        names = list(fits_by_case[have[0]]["fit_variants"])
-        out += ["", "Conventions of the fit, applied to the same CG fields (mu, c [Pa], band points):", "",
-                "| variant | " + " | ".join(have) + " |", "|---|" + "---|" * len(have)]
-        for n in names:
-            cells = []
-            for c in have:
-                v = fits_by_case[c]["fit_variants"].get(n, {})
-                if "mu" not in v:
-                    cells.append(v.get("error", "n/a"))
-                else:
-                    extra = ", k = %.4f ± %.4f 1/Pa" % (v["k_1_Pa"], v["k_err_1_Pa"]) if "k_1_Pa" in v else ""
-                    mu = "%.3f ± %.3f" % (v["mu"], v["mu_err"]) if "mu_err" in v else "%.3f (fixed)" % v["mu"]  # *_gladkyy_slope
-                    cells.append("%s, %.2f ± %.2f (%d)%s" % (mu, v["c_Pa"], v["c_err_Pa"], v["points"], extra))
-            out.append("| %s | %s |" % (n, " | ".join(cells)))
-    have = [c for c, f in fits_by_case.items() if f.get("torque_closure")]
-    if have:
-        out += ["", "Torque balance inside cylinders r0 (torque on the walls inside by contact point [mN m]; contact-by-contact "
-                    "crossing torque, CG flux at w and w/4, as fractions of it):", "",
-                "| case | r0 [mm] | walls inside | crossing | CG w | CG w/4 |", "|---|---|---|---|---|---|"]
-        for c in have:
-            for r in fits_by_case[c]["torque_closure"]:
-                out.append("| %s | %.1f | %.3f | %s | %s | %s |" % (c, 1e3 * r["r0_m"], 1e3 * r["walls_inside_Nm"],
-                           *("n/a" if r[k] is None else "%.3f" % r[k] for k in ("crossing_over_walls", "cg_w_over_walls", "cg_w4_over_walls"))))
-    have = [c for c, f in fits_by_case.items() if f.get("contact_numbers")]
-    if have:
-        out += ["", "| case | mechanical contacts per sphere | separated bridges per sphere |", "|---|---|---|"]
-        for c in have:
-            k = fits_by_case[c]["contact_numbers"]
-            out.append("| %s | %.3f ± %.3f | %.3f |" % (c, k["mechanical_per_particle"], k["mechanical_std"], k["separated_bridges_per_particle"]))
-    return out

@@ -6,7 +6,8 @@ import os
 
 import pytest
 
-from yade_capillary import accuracy, kernels
+from studies import accuracy
+from yade_capillary import kernels
 
 BUILD = os.environ.get("BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
 
@@ -28,7 +29,7 @@ def test_outputs_written(quick_run):
 
 
 def test_table_model_within_target(quick_run):
-    # Issue target: young_laplace_table within 0.5 % of the solver at every gap (exact rupture).
+    # Target: young_laplace_table within 0.5 % of the solver at every gap (exact rupture).
     _, summary, _, _, _ = quick_run
     worst = max(s["worst"] for s in summary if s["model"] == "young_laplace_table")
     assert worst < 5e-3

@@ -1,36 +1,20 @@
-"""End-to-end shear-cell analysis on synthetic snapshots with a known answer: particles on a
-lattice moving with omega/Omega = 1/2 + 1/2 erf((r - Rc)/W) and no contacts; the analysis must
-recover Rc and W at every height and write its outputs with the conventions."""
+"""End-to-end shear-cell analysis (yade_capillary.cellanalysis) on synthetic snapshots with a known answer
+(synthetic_cell.py): particles on a lattice moving with omega/Omega = 1/2 + 1/2 erf((r - Rc)/W) and no
+contacts; the analysis must recover Rc and W at every height and write its outputs with the conventions.
+The kinetic stress is the one of the coarse-graining literature; the reduced snapshots give the same fits."""
 import json
 import os
 
 import numpy as np
 import pytest
+from synthetic_cell import CFG, RC, W, contact_snapshot, make_run
 
-from yade_capillary import cellanalysis, fits
-
-CFG = dict(R=2.0e-3, Ri=0.01, Ro=0.06, Rs=0.045, H=0.03, period=10.0)
-RC, W = 0.04, 0.006
+from yade_capillary import cellanalysis, cg
 
 
 @pytest.fixture(scope="module")
 def rundir(tmp_path_factory):
-    d = tmp_path_factory.mktemp("cell")
-    Omega = 2 * np.pi / CFG["period"]
-    with open(d / "run.json", "w") as f:
-        json.dump({"cfg": CFG, "config": "synthetic", "case": "none", "Omega_rad_s": Omega, "torque_rotating_Nm": -1e-4,
-                   "torque_static_Nm": 1e-4, "particle_steps_per_s": 0.0}, f)
-    rng = np.random.default_rng(7)
-    rr, zz = np.meshgrid(np.arange(CFG["Ri"] + 1e-3, CFG["Ro"], 4e-4), np.arange(0.5e-3, CFG["H"] + 4e-3, 4e-4), indexing="ij")
-    for s in range(2):
-        t = rng.uniform(0, 2 * np.pi, rr.size)
-        r, z = rr.ravel(), zz.ravel()
-        x = np.stack([r * np.cos(t), r * np.sin(t), z], axis=1)
-        om = Omega * fits.erf_profile(r, RC, W)
-        v = np.stack([-om * x[:, 1], om * x[:, 0], np.zeros_like(r)], axis=1)
-        np.savez(d / ("snap_%03d.npz" % s), x=x, v=v, m=np.full(len(r), 1e-6), xP=np.zeros((0, 3)), xI=np.zeros((0, 3)),
-                 F=np.zeros((0, 3)), gap=np.zeros(0), t=float(s))
-    return d
+    return make_run(tmp_path_factory.mktemp("cell"))
 
 
 def test_recovers_band_centre_and_width(rundir):
@@ -53,9 +37,9 @@ def test_outputs_and_conventions(rundir):
 
 
 def test_reduced_snapshots_give_the_same_fits(rundir, tmp_path):
-    # analyse_reduced on the reduced snapshots (float32 fields, kinetic stress relative to the mean
-    # velocity at the node) against analyse on the snapshots themselves: the same band centres and
-    # widths within 1e-5 (float32 round-off of rho and j, 6e-8 relative, through the erf fit).
+    # analyse_reduced on the reduced snapshots against analyse on the snapshots themselves: one pipeline,
+    # so the same band centres and widths and the same stresses up to the float32 round-off of the
+    # kept fields (6e-8 relative; 1e-5 through the erf fit).
     full = cellanalysis.analyse(str(rundir))
     red_dir = tmp_path / "reduced"
     red_dir.mkdir()
@@ -66,206 +50,50 @@ def test_reduced_snapshots_give_the_same_fits(rundir, tmp_path):
     assert reduced["snapshots"] == full["snapshots"] == 2
     for key in ("Rc_m", "W_m"):
         assert reduced[key] == pytest.approx(full[key], rel=1e-5)
-    assert os.path.getsize(red_dir / "profiles.csv") > 0
+    a = np.genfromtxt(rundir / "profiles.csv", delimiter=",", names=True)
+    b = np.genfromtxt(red_dir / "profiles.csv", delimiter=",", names=True)
+    for col in ("p_Pa", "tau_Pa"):
+        assert np.nanmax(np.abs(a[col] - b[col])) <= 1e-5 * np.nanmax(np.abs(a[col]))
 
 
-def test_block_fits(rundir, tmp_path):
-    # Two blocks of one snapshot each of the steady synthetic band: each block recovers Rc (as the
-    # whole run does, within 2e-4 m), so the mean does and the standard error of the blocks is below
-    # that tolerance; the reduced snapshots go to `keep`. Three blocks of two snapshots: ValueError
-    # naming the parameter and the allowed range.
-    out = cellanalysis.block_fits(str(rundir), 2, keep=str(tmp_path / "keep"))
-    assert [b["snapshots"] for b in out["blocks"]] == [[1], [2]]
-    assert out["Rc_mean_m"] == pytest.approx(RC, abs=2e-4) and out["Rc_mean_m_err"] < 2e-4
-    assert sorted(os.listdir(tmp_path / "keep")) == ["cg_001.npz", "cg_002.npz"]
-    with pytest.raises(ValueError, match=r"blocks: 3 is outside \[2, 2\]"):
-        cellanalysis.block_fits(str(rundir), 3, keep=str(tmp_path / "keep"))
+def test_kinetic_stress_is_the_fluctuation_about_the_streaming_velocity():
+    """cg.kinetic_stress is sum m v' (x) v' K with v' = v - V(node), V = j/rho (Goldhirsch 2010): for particles
+    all moving with one velocity (a drift along r, theta and z at once) it is zero to round-off, whatever the
+    drift; with velocities +-u about that drift in equal numbers at the same points it is rho u (x) u. Then
+    through the pipeline: a solid-body rotation that also sinks at a uniform speed has no kinetic stress
+    but sigma_theta_theta = Omega^2 times the kernel-weighted variance of r about the node, the velocity
+    varying over the kernel (the former per-particle definition, about omega r e_theta only, counted the
+    uniform sinking as sigma_zz = rho v_z^2)."""
+    grid = cg.Grid(np.linspace(0.03, 0.05, 5), np.linspace(0.01, 0.02, 4), 4e-3)
+    rng = np.random.default_rng(11)
+    n = 4000
+    r, t, z = rng.uniform(0.02, 0.06, n), rng.uniform(0, 2 * np.pi, n), rng.uniform(0.0, 0.03, n)
+    x = np.stack([r * np.cos(t), r * np.sin(t), z], axis=1)
+    m = rng.uniform(1e-6, 2e-6, n)
+    er, et, ez = cg.cylindrical_basis(x)
+    drift = 0.3 * er + 0.2 * et - 0.1 * ez  # one velocity in each particle's cylindrical basis
+    rho, j = cg.density_and_momentum(grid, x, drift, m)
+    sk = cg.kinetic_stress(rho, j, cg.momentum_flux(grid, x, drift, m))
+    assert np.abs(sk).max() <= 1e-12 * (rho * 0.3 ** 2).max()
+    u = 0.05 * et + 0.02 * ez
+    x2, m2 = np.concatenate([x, x]), np.concatenate([m, m])
+    v2 = np.concatenate([drift + u, drift - u])
+    rho2, j2 = cg.density_and_momentum(grid, x2, v2, m2)
+    sk2 = cg.kinetic_stress(rho2, j2, cg.momentum_flux(grid, x2, v2, m2))
+    uu = np.outer([0.0, 0.05, 0.02], [0.0, 0.05, 0.02])
+    np.testing.assert_allclose(sk2, uu[:, :, None, None] * rho2[None, None], rtol=1e-10, atol=1e-12 * rho2.max() * 0.05 ** 2)
 
-
-def test_gap_classes(tmp_path):
-    # Bins of 1 um centred at a = -1.5, -0.5, 0.5, 1.5, 2.5, 3.5 um (a_crit = 3.5 um) and one at 0
-    # straddling a = 0 (centres need not be regular at 0 in this synthetic table; half a bin = the
-    # median spacing / 2 = 0.5 um): contact (2 bins), straddling (1), short (centre <= 1.75: 2), long
-    # (2); the densities are chosen so that each ratio is known.
-    rows = [(-1.5e-6, 3, 1.0, 10, 1.0, 10), (-0.5e-6, 1, 1.0, 10, 1.0, 10), (0.0, 7, 1.0, 1, 1.0, 1), (0.5e-6, 2, 1.0, 5, 1.0, 5),
-            (1.5e-6, 2, 1.0, 5, 1.0, 5), (2.5e-6, 1, 1.0, 6, 1.0, 3), (3.5e-6, 1, 1.0, 6, 1.0, 3)]
-    path = tmp_path / "contacts_vs_a.csv"
-    np.savetxt(path, np.array(rows), delimiter=",",
-               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
-    g = cellanalysis.gap_classes(str(path))
-    assert g["a_crit_m"] == pytest.approx(3.5e-6)
-    assert (g["contact_per_snapshot"], g["straddling_per_snapshot"], g["short_per_snapshot"], g["long_per_snapshot"]) == (4, 7, 4, 2)
-    assert g["short_share"] == pytest.approx(4 / 6)
-    assert g["contact_band_over_outside"] == pytest.approx(1.0)
-    assert g["short_band_over_outside"] == pytest.approx(1.0)
-    assert g["long_band_over_outside"] == pytest.approx(2.0)
-
-
-def test_gap_classes_computed_edges(tmp_path):
-    # Bins as a histogram makes them: 12 edges of 7 um from -21 um, centres halfway, so that the edge at
-    # a = 0 is computed (-4e-22 m here) and the last three bins are empty. Expected: no straddling bin;
-    # contact = the 3 bins below 0 (15), a_crit = 38.5 um (the last bin with contacts, not the last
-    # centre 59.5 um), short = centres 3.5-17.5 um <= a_crit/2 (9), long = 24.5-38.5 um (3).
-    edges = np.linspace(-2.1e-5, 6.3e-5, 13)
-    a = (edges[:-1] + edges[1:]) / 2
-    n = [5, 5, 5, 4, 3, 2, 1, 1, 1, 0, 0, 0]
-    path = tmp_path / "contacts_vs_a.csv"
-    np.savetxt(path, np.column_stack([a, n, np.ones(12), n, np.ones(12), n]), delimiter=",",
-               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
-    g = cellanalysis.gap_classes(str(path))
-    assert g["a_crit_m"] == pytest.approx(38.5e-6)
-    assert (g["contact_per_snapshot"], g["straddling_per_snapshot"], g["short_per_snapshot"], g["long_per_snapshot"]) == (15, 0, 9, 3)
-
-
-def test_count_ratio_vs_gap(tmp_path):
-    # The bins of test_gap_classes_computed_edges (edge at a = 0 computed): dry pairs only in the 3 bins
-    # below 0 (15 per snapshot), wet 18 there plus bridges 4, 3, 2, ... above. Expected by hand: wet
-    # over dry at a_max = 0: 18/15; at 7 um: 22/15; at 21 um: 27/15; a_max off an edge, or bins of
-    # another cell: ValueError.
-    edges = np.linspace(-2.1e-5, 6.3e-5, 13)
-    a = (edges[:-1] + edges[1:]) / 2
-    header = "a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3"
-
-    def write(name, n, centres=a):
-        path = tmp_path / name
-        np.savetxt(path, np.column_stack([centres, n, np.ones(12), n, np.ones(12), n]), delimiter=",", header=header, comments="")
-        return str(path)
-
-    dry = write("dry.csv", [5, 5, 5, 0, 0, 0, 0, 0, 0, 0, 0, 0])
-    wet = write("wet.csv", [6, 6, 6, 4, 3, 2, 1, 1, 1, 0, 0, 0])
-    rows = cellanalysis.count_ratio_vs_gap(wet, dry, [0.0, 7e-6, 2.1e-5])
-    assert [r[3] for r in rows] == pytest.approx([18 / 15, 22 / 15, 27 / 15])
-    assert (rows[2][1], rows[2][2]) == (27, 15)
-    with pytest.raises(ValueError, match="not a bin edge"):
-        cellanalysis.count_ratio_vs_gap(wet, dry, [3e-6])
-    other = write("other.csv", [6] * 12, centres=2 * a)
-    with pytest.raises(ValueError, match="different separation bins"):
-        cellanalysis.count_ratio_vs_gap(other, dry, [0.0])
-
-
-def test_force_against_model(tmp_path):
-    # A table whose separated bins (9 of 2e-5 m, the bin centred at 0 straddles a = 0) hold exactly the
-    # model's bin-averaged force, one bin doubled: the median ratio is 1, the mean weighted by the
-    # contacts (one per bin) is 10/9.
-    from yade_capillary import kernels
-    R, V, gamma = 2.381e-3, 13.6e-12, 20.6e-3
-    centres = np.arange(-1, 10) * 2e-5
-    half = 1e-5
-    rows = []
-    for k, x in enumerate(centres):
-        f = np.mean(kernels.force("willett_full", np.linspace(x - half, x + half, 21), R1=R, R2=R, volume=V, gamma=gamma, theta=0.0)) if x > half else 1.0
-        rows.append((x, 1.0, f * (2.0 if k == 5 else 1.0), 0, 0, 0))
-    path = tmp_path / "contacts_vs_a.csv"
-    np.savetxt(path, np.array(rows), delimiter=",",
-               header="a_m,contacts_per_snapshot,mean_force_N,band_contacts_per_m3,band_mean_force_N,outside_contacts_per_m3", comments="")
-    fm = cellanalysis.force_against_model(str(path), "willett_full", R, V, gamma)
-    assert fm["bins"] == 9
-    assert fm["median"] == pytest.approx(1.0, rel=1e-12)
-    assert fm["weighted_mean"] == pytest.approx(10 / 9, rel=1e-12)
-
-
-def _profiles(path, z, p, tau, nodes=3):
-    """A profiles.csv whose band has `nodes` nodes at each height z with pressure p and shear stress tau
-    (and one node outside the band that must be ignored)."""
-    rows = []
-    for zi, pi, ti in zip(z, p, tau):
-        rows += [(0.05 + 1e-3 * k, zi, 100.0, 0.5, 0.2, pi, ti, 1.0) for k in range(nodes)]
-        rows.append((0.02, zi, 100.0, 0.0, 0.0, pi, 100.0, 0.0))
-    np.savetxt(path, np.array(rows), delimiter=",", header="r_m,z_m,rho_kg_m3,omega_over_Omega,gamma_dot_1_s,p_Pa,tau_Pa,in_band", comments="")
-    return str(path)
-
-
-def test_excess_shear_against_known_lines(tmp_path):
-    """Wet band tau = 0.13 p + 1.3 Pa (Gladkyy's 13.6 nl line), dry band tau = 0.137 p - 0.25 Pa (our dry
-    validation fit) at other heights and pressures: the excess at every wet height within the dry
-    pressures is the difference of the two lines there (the interpolation of a straight dry line is
-    exact), and the intercept with the slope 0.13 is 1.3 Pa."""
-    z = np.linspace(0.005, 0.035, 13)
-    p_dry = np.linspace(25.0, 1.0, 13)
-    dry = _profiles(tmp_path / "dry.csv", z, p_dry, 0.137 * p_dry - 0.25)
-    p_wet = np.linspace(30.0, 2.0, 13)  # the deepest three lie beyond the dry pressures
-    wet = _profiles(tmp_path / "wet.csv", z, p_wet, 0.13 * p_wet + 1.3)
-    e = cellanalysis.excess_shear(wet, dry)
-    p = np.array([r[1] for r in e["rows"]])
-    assert len(p) == 10 and p.max() <= 25.0
-    np.testing.assert_allclose([r[4] for r in e["rows"]], 1.3 + 0.25 - 0.007 * p, rtol=0, atol=1e-12)
-    np.testing.assert_allclose(e["excess_Pa"], np.mean(1.55 - 0.007 * p), rtol=0, atol=1e-12)
-    assert e["excess_low_Pa"] > e["excess_high_Pa"]
-    assert abs(e["c_fixed_mu_Pa"] - 1.3) < 1e-12 and e["c_fixed_mu_err_Pa"] < 1e-12
-    line = cellanalysis.excess_shear(wet, (0.137, -0.25, 1.0, 25.0))  # the dry band given as its fitted line
-    np.testing.assert_allclose([r[4] for r in line["rows"]], [r[4] for r in e["rows"]], rtol=0, atol=1e-12)
-
-
-def test_excess_shear_needs_overlapping_pressures(tmp_path):
-    z = np.linspace(0.005, 0.035, 5)
-    dry = _profiles(tmp_path / "dry.csv", z, np.linspace(10.0, 1.0, 5), np.linspace(1.0, 0.1, 5))
-    wet = _profiles(tmp_path / "wet.csv", z, np.linspace(50.0, 20.0, 5), np.linspace(6.0, 3.0, 5))
-    with pytest.raises(ValueError, match="dry band's pressures"):
-        cellanalysis.excess_shear(wet, dry)
-
-
-def test_fit_variants_gladkyy_slope():
-    # Band stresses on Gladkyy's 13.6 nl line tau = 0.13 p + 1.3 Pa (§4.1), pressures 2-20 Pa over the
-    # heights, nodes outside the band (gamma_dot below 80 % of the peak) on another line: the free fit
-    # and the fit with his slope both give c = 1.3 Pa, the latter over the band's mean pressure.
-    nr, nz = 6, 5
-    p = np.linspace(2.0, 20.0, nz)[None, :] * np.ones((nr, 1))
-    band = np.zeros((nr, nz), bool)
-    band[2:4] = True
-    tau = np.where(band, 0.13 * p + 1.3, 0.5 * p)
-    sigma = np.zeros((3, 3, nr, nz))
-    for k in range(3):
-        sigma[k, k] = p
-    sigma[0, 1] = sigma[1, 0] = tau
-    gdot = np.where(band, 1.0, 0.1)
-    out = cellanalysis.fit_variants(sigma, gdot, np.ones((nr, nz), bool), 0.5)
-    assert out["baseline"]["mu"] == pytest.approx(0.13, abs=1e-12) and out["baseline"]["c_Pa"] == pytest.approx(1.3, abs=1e-12)
-    g = out["baseline_gladkyy_slope"]
-    assert g["mu"] == 0.13 and g["c_Pa"] == pytest.approx(1.3, abs=1e-12) and g["c_err_Pa"] < 1e-12
-    assert g["points"] == 10 and g["p_mean_Pa"] == pytest.approx(11.0, abs=1e-12)
-
-
-def test_report_of_reduced_fits(tmp_path):
-    # shearcell.report on what analyse_reduced writes (no CG torque at Rs: it needs every contact) with
-    # a fixed-slope variant (no mu_err): the table must show the run's numbers, "n/a" for the missing
-    # torque and the fixed slope as such (both raised KeyError before).
-    from yade_capillary import shearcell
-    cfg = dict(CFG, dt_over_tc=0.05, tc=5.4e-4, run_s=5.0)
-    d = tmp_path / "dry"
-    d.mkdir()
-    band = [{"z_m": 0.01, "Rc_m": 0.04, "W_m": 0.006}]
-    fit = {"mu": 0.134, "mu_err": 0.001, "c_Pa": 0.76, "c_err_Pa": 0.04, "mu_threshold": 0.14, "c_Pa_threshold": 0.5, "band_points": 40,
-           "band_points_threshold": 50, "band_fits": band, "torque_Nm": 0.1106, "torque_static_Nm": -0.11,
-           "fit_variants": {"baseline": {"mu": 0.134, "mu_err": 0.001, "c_Pa": 0.76, "c_err_Pa": 0.04, "points": 40},
-                            "baseline_gladkyy_slope": {"mu": 0.13, "c_Pa": 0.91, "c_err_Pa": 0.02, "points": 40}}}
-    (d / "fits.json").write_text(json.dumps(fit))
-    (d / "run.json").write_text(json.dumps({"cfg": cfg, "steps": 185185, "wall_s": 24000.0, "particle_steps_per_s": 1.3e6}))
-    md = shearcell.report(str(tmp_path))
-    row = next(line for line in md.splitlines() if line.startswith("| dry |"))
-    assert "0.134 ± 0.001 (0.13)" in row and "0.76 ± 0.04 (0.0)" in row
-    assert "110.60 / -110.00 / n/a" in row
-    assert "| baseline_gladkyy_slope | 0.130 (fixed), 0.91 ± 0.02 (40) |" in md
-
-
-def _contact_snapshot(path, grid, cells, gaps, forces, t, rng):
-    """A snapshot whose contacts have their branch middles at the nodes (4 ic + 1, 4 kc + 1) of the coarse
-    cells `cells`, the given gaps [m] and |F| [N], between flowing spheres placed at both ends of each
-    branch; plus wall contacts (partner point not a sphere) and wall torques, for the torque balance."""
-    mid = np.array([(grid.r[4 * ic + 1], grid.z[4 * kc + 1]) for ic, kc in cells])
-    theta = rng.uniform(0, 2 * np.pi, len(mid))
-    c = np.stack([mid[:, 0] * np.cos(theta), mid[:, 0] * np.sin(theta), mid[:, 1]], axis=1)
-    u = rng.normal(size=(len(mid), 3))
-    u = 0.6 * CFG["R"] * u / np.linalg.norm(u, axis=1)[:, None]
-    xP, xI = c - u, c + u
-    F = np.asarray(forces)[:, None] * u / np.linalg.norm(u, axis=1)[:, None]
-    wall_x = np.array([[0.011, 0.0, 0.005], [0.0, 0.03, 0.001], [0.05, 0.0, 0.001]])  # inner wall, bottom inside and outside Rs
-    wall_c = wall_x + np.array([[0.0005, 0.0, 0.0], [0.0, 0.0, -0.0005], [0.0, 0.0, -0.0005]])
-    wall_F = rng.normal(size=(3, 3)) * 1e-3
-    x = np.concatenate([xP, xI, wall_x])
-    rz = rng.uniform(0.01, 0.06, (5, 2))
-    np.savez(path, x=x, v=np.zeros_like(x), m=np.full(len(x), 1e-6), xP=np.concatenate([xP, wall_x]), xI=np.concatenate([xI, wall_c]),
-             F=np.concatenate([F, wall_F]), gap=np.concatenate([gaps, [-1e-6] * 3]), t=t,
-             static_rz=rz, static_Tz=rng.normal(size=5) * 1e-4, rotating_rz=rz[::-1], rotating_Tz=rng.normal(size=5) * 1e-4)
+    Omega, sink = 2.0, 0.05
+    d = {"x": x, "v": Omega * np.cross([0.0, 0.0, 1.0], x) - [0.0, 0.0, sink], "m": m, "xP": np.zeros((0, 3)), "xI": np.zeros((0, 3)),
+         "F": np.zeros((0, 3))}
+    sigma = cellanalysis.stress(cellanalysis.snapshot_fields(grid, d))
+    m0, m1, m2r = grid.accumulate(r, z, np.column_stack([m, m * r, m * r * r]))
+    expected = Omega ** 2 * (m2r - m1 * m1 / m0)  # rho Omega^2 <(r_i - <r_i>)^2>, weights m K
+    scale = (m0 * sink ** 2).max()
+    np.testing.assert_allclose(sigma[1, 1], expected, rtol=1e-6, atol=1e-12 * scale)
+    assert 0 < expected.max() < 0.1 * scale
+    others = [sigma[a, b] for a in range(3) for b in range(3) if (a, b) != (1, 1)]
+    assert np.abs(others).max() <= 1e-12 * scale
 
 
 def test_reduced_contacts(tmp_path):
@@ -282,7 +110,7 @@ def test_reduced_contacts(tmp_path):
     gaps = [centre(-3), centre(10), centre(10), centre(10), centre(40), centre(-3), centre(10), centre(40), centre(40), centre(100), centre(10), centre(0)]
     forces = np.arange(1, 13) * 1e-4
     rng = np.random.default_rng(3)
-    _contact_snapshot(tmp_path / "snap.npz", grid, cells, gaps, forces, 0.0, rng)
+    contact_snapshot(tmp_path / "snap.npz", grid, cells, gaps, forces, 0.0, rng)
     cellanalysis.reduce_snapshot(str(tmp_path / "snap.npz"), CFG, str(tmp_path / "cg.npz"))
     red = dict(np.load(tmp_path / "cg.npz"))
     all_n, all_f = red["gap_n"][-1], red["gap_f"][-1]
@@ -311,32 +139,6 @@ def test_reduced_contacts(tmp_path):
     assert A["contacts_per_snapshot"][k] == 5 and out["contacts_beyond_gap_bins_per_snapshot"] == 0
 
 
-def test_reduced_torque_closure(rundir, tmp_path):
-    # The torque balance kept in reduced snapshots (contact by contact, per snapshot) and averaged by
-    # analyse_reduced must equal torque_closure over the same two snapshots (walls inside by contact point
-    # and by centre, crossing torque) to float64 round-off.
-    grid = cellanalysis.analysis_grid(CFG)
-    red_dir = tmp_path / "reduced"
-    red_dir.mkdir()
-    (red_dir / "run.json").write_text((rundir / "run.json").read_text())
-    rng = np.random.default_rng(5)
-    cells = [(ic, kc) for ic in range(1, 11) for kc in range(0, 7)]
-    data = []
-    for s in range(2):
-        snap = tmp_path / ("snap_%d.npz" % s)
-        _contact_snapshot(snap, grid, cells, rng.uniform(-1e-5, 1e-4, len(cells)), rng.uniform(1e-4, 1e-3, len(cells)), float(s), rng)
-        with np.load(snap) as d:
-            data.append(dict(d))
-        cellanalysis.reduce_snapshot(str(snap), CFG, str(red_dir / ("cg_%03d.npz" % (s + 1))))
-    full = cellanalysis.torque_closure(data, CFG, grid.w, lambda r, z: np.zeros_like(r))
-    reduced = cellanalysis.analyse_reduced(str(red_dir))["torque_closure"]
-    assert len(full) == len(reduced) > 5
-    assert any(abs(row["crossing_Nm"]) > 0 for row in full)
-    for a, b in zip(full, reduced):
-        for key in ("r0_m", "walls_inside_Nm", "walls_centre_inside_Nm", "crossing_Nm"):
-            assert b[key] == pytest.approx(a[key], rel=1e-12, abs=1e-18)
-
-
 def test_interim(rundir, tmp_path):
     # A run in segments before its end (what run_segment keeps: state.npz, torque.csv, cg_*.npz): interim
     # must give the fits of analyse_reduced on the same reduced snapshots, and the torques as the means of
@@ -361,42 +163,7 @@ def test_interim(rundir, tmp_path):
     np.savetxt(keep / "torque.csv", [(-1.0, -9.0, 9.0)], delimiter=",", header="time_s,torque_rotating_Nm,torque_static_Nm", comments="")
     out = cellanalysis.interim(str(keep))
     assert out["torque_Nm"] is None and out["torque_static_Nm"] is None and out["Rc_m"] == pytest.approx(ref["Rc_m"], rel=1e-12)
-    # Gladkyy's 13 heights (§4.2) reach analyse_reduced: 13 band fits, the same as its own at 13 heights
-    out = cellanalysis.interim(str(keep), heights=cellanalysis.GLADKYY_HEIGHTS)
+    # the heights reach analyse_reduced: 13 band fits, the same as its own at 13 heights
+    out = cellanalysis.interim(str(keep), heights=13)
     ref13 = cellanalysis.analyse_reduced(str(keep), heights=13, outdir=str(tmp_path), run=json.loads((rundir / "run.json").read_text()))
     assert len(out["band_fits"]) == 13 and out["Rc_m"] == pytest.approx(ref13["Rc_m"], rel=1e-12)
-
-
-def test_stress_parts_and_band_decomposition():
-    """stress_parts splits the contact stress at a = 0 (bridges a > 0, contacts a <= 0; the two sum to the
-    whole contact stress, as cg.contact_stress is linear in the contacts), and band_decomposition splits the
-    excess over the dry line exactly: the parts' excesses sum to the total's, and a stress that lies on the
-    dry line has no excess."""
-    rng = np.random.default_rng(3)
-    n = 400
-    r, t, z = rng.uniform(0.02, 0.05, n), rng.uniform(0, 2 * np.pi, n), rng.uniform(0.004, 0.025, n)
-    xP = np.stack([r * np.cos(t), r * np.sin(t), z], axis=1)
-    xI = xP + rng.normal(scale=2e-3, size=(n, 3))
-    snap = {"xP": xP, "xI": xI, "F": rng.normal(size=(n, 3)), "gap": rng.uniform(-1e-4, 1e-4, n), "x": xP, "v": rng.normal(scale=1e-3, size=(n, 3)),
-            "m": np.full(n, 1e-4)}
-    parts = cellanalysis.stress_parts(snap, CFG)
-    whole = cellanalysis.cg.contact_stress(cellanalysis.analysis_grid(CFG), xP, xI, snap["F"])
-    assert np.allclose(parts["bridges"] + parts["contacts"], whole, rtol=1e-12, atol=1e-12 * np.abs(whole).max())
-    assert np.abs(parts["bridges"]).max() > 0 and np.abs(parts["contacts"]).max() > 0
-
-    band = np.zeros(parts["contacts"].shape[2:], bool)
-    band[5:15, 3:8] = True
-    out = cellanalysis.band_decomposition(parts, band, (0.12, -0.04))
-    for q in ("p", "tau", "excess"):
-        assert sum(out["%s_%s_Pa" % (q, k)] for k in parts) == pytest.approx(out["%s_Pa" % q], rel=1e-12, abs=1e-12)
-
-    # One part on the dry line tau = c + mu p at every node (shear along r theta): no excess.
-    mu, c = 0.12, 0.3
-    p = np.full(band.shape, 20.0)
-    line = np.zeros((3, 3) + band.shape)
-    for k in range(3):
-        line[k, k] = p
-    line[0, 1] = line[1, 0] = c + mu * p
-    out = cellanalysis.band_decomposition({"contacts": line}, band, (mu, c))
-    assert out["excess_Pa"] == pytest.approx(0.0, abs=1e-12) and out["excess_contacts_Pa"] == pytest.approx(0.0, abs=1e-12)
-    assert out["tau_Pa"] == pytest.approx(c + mu * 20.0, rel=1e-12)

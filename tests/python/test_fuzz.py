@@ -1,9 +1,9 @@
 """Kernel fuzz, CI size (1e5 force evaluations, seed 1; about 5 s on one core plus 0.5 s CPU per hang): every model x rupture
-rule over wide and absurd parameter ranges (py/yade_capillary/fuzz.py). Every call either raises a
+rule over wide and absurd parameter ranges (tests/support/fuzz.py). Every call either raises a
 ValueError naming the parameter, or gives finite, non-negative forces, zero beyond rupture and
 monotone where the model is declared monotone; no hang, no crash, no other exception type.
-The nightly size (1e6) is scripts/fuzz_kernels.py."""
-from yade_capillary import fuzz
+The nightly size (1e6) is tests/fuzz_kernels.py."""
+import fuzz
 
 
 def test_names_parameter():

@@ -1,4 +1,4 @@
-"""Findings of the kernel stress campaign (issue 8), one test each, through the Python API.
+"""Findings of the kernel stress campaign, one test each, through the Python API.
 
 Each failed on the kernels before the hardening: the force was inf or NaN, the call hung, or the
 error message lost the value. Expected behaviour: a ValueError naming the parameter (or the

@@ -1,5 +1,5 @@
-"""Unequal contact angles (issue 11 item 6): the mean of the cosines (Elskamp 2018 eq. 14, 15)
-against the cosine of the mean angle (the kernels today), measured against the exact solver.
+"""Unequal contact angles: the mean of the cosines (Elskamp 2018 eq. 14, 15)
+against the cosine of the mean angle (the kernels' former form), measured against the exact solver.
 The facts asserted here are the ones scripts/mixed_angles.py reports, on a reduced set of V*."""
 import csv
 import math
@@ -8,7 +8,8 @@ import os
 import numpy as np
 import pytest
 
-from yade_capillary import kernels, mixedangles
+from studies import mixedangles
+from yade_capillary import kernels
 
 EQ = mixedangles.EXACT_EQUAL
 MODELS = ("willett_full", "willett_reduced", "rabinovich_lambert", "richefeu", "young_laplace_table", EQ)

@@ -1,4 +1,4 @@
-"""YADE's MPI module (yade.mpy) with our law and PendularLoop: scripts/mpi_run.py run serially and
+"""YADE's MPI module (yade.mpy) with our law and PendularLoop: tests/support/mpi_run.py run serially and
 under `mpiexec -n 2` and `-n 3` (1 and 2 worker ranks, spheres split into slabs along x).
 
 Expected values: the serial run of the same script. Checked:
@@ -21,7 +21,7 @@ import pytest
 
 BUILD = os.environ.get("BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
 ROOT = os.path.join(os.path.dirname(__file__), "..", "..")
-SCRIPT = os.path.join(ROOT, "scripts", "mpi_run.py")
+SCRIPT = os.path.join(ROOT, "tests", "support", "mpi_run.py")
 LAUNCHER = os.path.join(BUILD, "yade-capillary")
 TIMEOUT = 300  # s; a run takes 2-10 s
 RMIN = {"packing": 0.5e-3, "shear_cell": 2.381e-3}

@@ -11,7 +11,7 @@ from yade.utils import sphere
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_bad_input")
 nan = float("nan")

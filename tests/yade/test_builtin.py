@@ -13,7 +13,7 @@ from yade.wrapper import (Ig2_Sphere_Sphere_ScGeom, InteractionLoop, Ip2_ViscElC
 
 from yade_capillary import cases, kernels
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_builtin")
 BUILTIN = {"weigert": "Weigert", "willett_full": "Willett_numeric", "willett_reduced": "Willett_analytic",

@@ -29,7 +29,7 @@ import numpy as np
 from yade import O
 
 from yade_capillary import shearcell
-from yade_capillary.testing import Checker
+from testing import Checker
 
 N = 1500
 ck = Checker("test_checkpoint")

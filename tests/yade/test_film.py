@@ -15,7 +15,7 @@ from yade.wrapper import PendularMat
 
 from yade_capillary import kernels
 from yade_capillary.scene import LOOPS, engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_film")
 GAMMA, THETA = 0.072, math.radians(20)

@@ -14,7 +14,7 @@ from yade.utils import sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines, stable_dt
-from yade_capillary.testing import Checker
+from testing import Checker
 
 loop = sys.argv[1] if len(sys.argv) > 1 else "fused"
 formation = sys.argv[2] if len(sys.argv) > 2 else "contact"

@@ -26,8 +26,9 @@ from yade import O
 from yade.utils import sphere
 from yade.wrapper import ForceResetter, PendularForceResetter, PyRunner
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_force_resetter")
 STEPS = 500

@@ -1,13 +1,13 @@
 # The simulation thread must not need Python's GIL at every step. YADE's O.reset() (and O.load) hold the
 # GIL while they wait for the step in progress to end; PendularIntegrator read its NewtonIntegrator's
-# parameters and wrote the collider's flag through Python at every step, so such a step could wait for the
-# GIL forever: test_film hung there once (after O.pause(); O.wait(); O.reset()). Now the
-# parameters are read before O.run and after a NewtonIntegrator attribute is set (PendularIntegrator.refresh,
-# objects.guard), and the flag is written into the object directly.
+# parameters and wrote the collider's flag through Python at every step, a step could wait for the GIL
+# forever (after O.pause(); O.wait(); O.reset()). So the parameters are read before O.run and after a
+# NewtonIntegrator attribute is set (PendularIntegrator.refresh, yade_capillary.patches), and the flag is written into
+# the object directly.
 # - While the main thread holds the GIL in one long C call (a sum over a range: the GIL is handed over
 #   rarely), a run in the background goes on at least 0.3 times as fast as while the main thread sleeps
-#   (measured: 0.03 before the change, 282 steps in 0.22 s against about 7 000; the main thread's loop
-#   takes a core of its own, so on a busy machine the run may slow down a little).
+#   (a step that needs the GIL runs at a few percent of that speed; the main thread's loop takes a core of
+#   its own, so on a busy machine the run may slow down a little).
 # - A gravity set between two runs is used from the next step on: positions and velocities bit-identical
 #   to NewtonIntegrator's with the same change.
 # (O.pause() and O.wait() may return before the last step has ended, and O.reset() then races with it in
@@ -17,8 +17,9 @@ import time
 from yade import O
 from yade.wrapper import NewtonIntegrator
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_gil")
 

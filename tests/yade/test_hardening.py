@@ -11,7 +11,7 @@ from yade.wrapper import InteractionLoop, PendularCheck, PendularMat
 
 from yade_capillary import cases, kernels
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_hardening")
 good = dict(tc=1e-4, en=0.8, et=0.8, density=2500, wet=True, Vb=1e-11, gamma=0.05, theta=0.2)

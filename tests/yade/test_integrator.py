@@ -27,8 +27,9 @@ import os
 from yade import O
 from yade.wrapper import NewtonIntegrator, PyRunner
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_integrator")
 STEPS = 1000

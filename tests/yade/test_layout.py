@@ -12,7 +12,7 @@ from yade.utils import sphere
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_layout")
 R1, R2 = 1.1e-3, 0.7e-3

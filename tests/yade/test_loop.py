@@ -7,7 +7,7 @@
 #   forces and liquid totals must be bit-identical.
 #   A PyRunner reads every interaction's geometry and physics every 500 steps and, once, makes one
 #   bridge inactive and one sphere 30 % larger from Python: PendularLoop keeps most interactions in its own records between
-#   steps, so what Python reads and writes must go through them (yade_capillary.objects); the run
+#   steps, so what Python reads and writes must go through them (yade_capillary.patches); the run
 #   with records must be bit-identical to the one without. With records, between the collider's runs the
 #   pass visits only its list of entries (PendularLoop.skipFar), without it every entry: so the run
 #   with records is also the list's test, bit-identical to the full passes of the run without.
@@ -27,8 +27,9 @@ from yade import O
 from yade.utils import sphere
 from yade.wrapper import FrictMat, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_loop")
 STEPS = 2000

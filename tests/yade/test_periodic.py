@@ -7,7 +7,7 @@ from yade.utils import sphere
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_periodic")
 L, R, rate = 0.01, 1e-3, 5.0  # cell size [m], radius [m], shear rate dvx/dy [1/s]

@@ -28,8 +28,9 @@ import time
 from yade import O
 from yade.wrapper import InteractionLoop, PendularPhys
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 ck = Checker("test_records")
 

@@ -1,5 +1,5 @@
 # docs/reference.md, the class reference generated from the docstrings of the build
-# (py/yade_capillary/reference.py), is up to date: the page this build generates must equal the
+# (tools/reference.py), is up to date: the page this build generates must equal the
 # committed one. On a difference the head of the unified diff (committed -> generated) and the
 # command that regenerates the page are printed. Also: the class list, which the generator takes from
 # the plugin library's symbols, is the list of classes pkg/yade/*.hpp registers (REGISTER_SERIALIZABLE),
@@ -10,8 +10,10 @@ import os
 import re
 import sys
 
-from yade_capillary import reference
-from yade_capillary.testing import Checker
+from testing import Checker
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0])))), "tools"))
+import reference  # noqa: E402  (tools/reference.py)
 
 DIFF_LINES = 40  # of the unified diff shown on failure
 

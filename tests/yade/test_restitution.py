@@ -1,12 +1,12 @@
-# Dry binary collisions reproduce the normal restitution coefficient en within 1 % (issue
-# requirement; en is defined with the no-attraction rule of Schwager & Poeschel 2007), for two
+# Dry binary collisions reproduce the normal restitution coefficient en within 1 % (en is
+# defined with the no-attraction rule of Schwager & Poeschel 2007), for two
 # free spheres and for a sphere against a fixed sphere (infinitely heavy partner).
 from yade import O
 from yade.utils import sphere
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_restitution")
 R, tc = 1e-3, 1e-4

@@ -23,8 +23,8 @@ import tempfile
 
 from yade import O
 
-from yade_capillary import stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
 
 N, M = 400, 400
 TC, EN = 1e-4, 0.5

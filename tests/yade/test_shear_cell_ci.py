@@ -15,12 +15,14 @@ import json
 import os
 import tempfile
 
-import yade_capillary
+import sys
+
+from testing import Checker
+
 from yade_capillary import cellanalysis, shearcell
-from yade_capillary.testing import Checker
 
 ck = Checker("test_shear_cell_ci")
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(yade_capillary.__file__))))  # __file__ is yade's launcher here; the package in build/python links to py/
+root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0]))))  # yade puts the script's path in sys.argv[0]
 with open(os.path.join(root, "tests", "data", "shear_cell_ci_reference.json")) as f:
     ref = json.load(f)
 work = tempfile.mkdtemp(prefix="shear_cell_ci_")

@@ -1,12 +1,13 @@
 # Shear-cell run options that validation runs rely on: giving a dry prepared cell a liquid
 # (every contact of the packing gets a bridge of the case's volume at the first step, and the
-# liquid totals account for it) and running it with another configuration's run parameters only.
+# liquid totals account for it) and running it with another configuration's run parameters only
+# (configurations added to shearcell.CONFIGS, as the studies add theirs, scripts/studies/cell_configs.py).
 from yade import O
 from yade.utils import sphere
 
 from yade_capillary import shearcell
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_shear_cell_setup")
 cfg = shearcell.CONFIGS["ci"]
@@ -39,6 +40,9 @@ ck.raises(ValueError, lambda: shearcell._set_case(info, "wet13.6nl"), ["case", "
 ck.raises(ValueError, lambda: shearcell._set_case(dict(info, case="dry"), "humid"), ["case", "humid", "wet74.2nl"], "unknown case")
 
 # Run parameters only: a cell prepared as `validation` runs as `validation_2s`, not as `ci`.
+shearcell.CONFIGS["validation_2s"] = dict(shearcell.VALIDATION, run_s=2.0, snapshots=10, snapshot_dt_s=0.1)
+shearcell.CONFIGS["validation_5s"] = dict(shearcell.VALIDATION, run_s=3.0, snapshots=12)
+shearcell.CONFIGS["validation_g22"] = dict(shearcell.VALIDATION, g=2.2 * shearcell.GRAVITY)
 prepared = {"case": "dry", "config": "validation", "cfg": dict(shearcell.CONFIGS["validation"])}
 shearcell._set_config(prepared, "validation_2s")
 ck.true(prepared["cfg"]["run_s"] == shearcell.CONFIGS["validation_2s"]["run_s"] and prepared["config"] == "validation_2s",
@@ -53,7 +57,7 @@ ck.raises(ValueError, lambda: shearcell._set_config(prepared, "validation_g22"),
 ck.raises(ValueError, lambda: shearcell.preparation_of("validation_g3"), ["config", "validation_g3"], "unknown configuration")
 g22 = {"case": "dry", "config": "validation_g22", "cfg": dict(shearcell.CONFIGS["validation_g22"]), "rotating": [0]}
 newton = [e for e in shearcell.run_engines(g22) if type(e).__name__ == "NewtonIntegrator"]
-ck.close(newton[0].gravity[2], -2.2 * 9.81, 1e-12, "NewtonIntegrator's gravity under validation_g22", "VALIDATION_G22: 2.2 g")
+ck.close(newton[0].gravity[2], -2.2 * 9.81, 1e-12, "NewtonIntegrator's gravity under validation_g22", "validation_g22: 2.2 g")
 newton = [e for e in shearcell.run_engines(dict(prepared, rotating=[0])) if type(e).__name__ == "NewtonIntegrator"]
 ck.close(newton[0].gravity[2], -9.81, 1e-12, "NewtonIntegrator's gravity of the validation cell", "shearcell.GRAVITY")
 ck.finish()

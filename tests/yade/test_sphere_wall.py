@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from yade_capillary import cases, kernels, twosphere
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_sphere_wall")
 STEPS = 200  # samples up to the rupture distance

@@ -2,7 +2,7 @@
 # gravity in a closed box of walls (utils.wall) or facets (geom.facetBox), and wet "granular gases"
 # of particles colliding at 10 m/s, for several models (one settling and one gas scene with viscous
 # bridges and the dynamic rupture rule), at 0.9 of the stability limit of the contact
-# law (yade_capillary.stress.stable_dt: scene.stable_dt(safety=1), checked against the damped
+# law (tests/support/stress.py, stable_dt: scene.stable_dt(safety=1), checked against the damped
 # central-difference limit of one linear spring-dashpot contact; divided by the square root of the
 # number of contacts that can act in parallel on a sphere, see run_scene). Every CHECK_EVERY steps:
 # no sphere left the box (a sign of a time step beyond the stability limit), finite positions,
@@ -13,15 +13,16 @@
 #
 # CI size (default, about 30 s on one core); nightly size (10x the particles, 5x the steps, about
 # 1 h on one core):
-#   build/yade-capillary -j1 -n -x tests/yade/test_stress_dynamic.py nightly   (or STRESS_SIZE=nightly)
+#   PYTHONPATH=tests/support build/yade-capillary -j1 -n -x tests/yade/test_stress_dynamic.py nightly   (or STRESS_SIZE=nightly)
 # STRESS_ONLY=settling or STRESS_ONLY=gas runs only those scenes.
 import os
 import sys
 
 from yade import O
 
-from yade_capillary import scene, stress
-from yade_capillary.testing import Checker
+import stress
+from testing import Checker
+from yade_capillary import scene
 
 NIGHTLY = "nightly" in sys.argv[1:] or os.environ.get("STRESS_SIZE") == "nightly"
 ONLY = os.environ.get("STRESS_ONLY")  # "settling" or "gas": run only those scenes

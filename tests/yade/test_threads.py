@@ -27,7 +27,7 @@ import tempfile
 
 from yade import O
 
-from yade_capillary import stress
+import stress
 
 STEPS = 500
 SPEED, RMIN = 0.1, 0.5e-3  # initial speed [m/s], smallest radius [m] (box_packing's default)
@@ -49,7 +49,7 @@ if "--worker" in sys.argv:
     worker(sys.argv[sys.argv.index("--worker") + 1])
     sys.exit(0)
 
-from yade_capillary.testing import Checker  # noqa: E402
+from testing import Checker  # noqa: E402
 
 ck = Checker("test_threads")
 launcher = os.path.join(stress.build_dir(), "yade-capillary")

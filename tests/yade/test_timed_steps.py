@@ -1,4 +1,4 @@
-# benchmark.timed_steps, which every timed run of ./run.sh bench goes through: the wall time of n steps is
+# benchmark.timed_steps (bench/benchmark.py), which every timed run of ./run.sh bench goes through: the wall time of n steps is
 # stamped in the n-th step by a PyRunner (benchmark.END_STAMP, the last engine), not read when a poll of the main
 # thread notices the end. Checked on a small wet packing with PendularLoop (whose records must survive the stamp):
 # - the stamp runs in exactly the last of the n steps, once: its iterLast is the iteration of that step
@@ -9,13 +9,16 @@
 #   records (nRecorded > 0 after each run, also after a one-step run: a step after the records were dropped
 #   computes none from them);
 # - n < 1, a run whose last step would be iteration 0, and an engine list without the stamp raise, naming why.
+import os
+import sys
 import time
 
+from testing import Checker
 from yade import O
 from yade.wrapper import PendularMat
 
-from yade_capillary import benchmark
-from yade_capillary.testing import Checker
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0])))), "bench"))
+import benchmark  # noqa: E402  (bench/benchmark.py)
 
 ck = Checker("test_timed_steps")
 benchmark.build(PendularMat(tc=benchmark.TC, en=benchmark.EN, et=benchmark.EN, density=benchmark.RHO, frictionAngle=0, wet=True, Vb=benchmark.VB,

@@ -9,9 +9,9 @@ from yade.utils import sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines, stable_dt
-from yade_capillary.stress import damping_ratio_x as damping_ratio
-from yade_capillary.stress import oscillator_limit as limit
-from yade_capillary.testing import Checker
+from stress import damping_ratio_x as damping_ratio
+from stress import oscillator_limit as limit
+from testing import Checker
 
 ck = Checker("test_timestep")
 R, rho = 1e-3, 2500.0

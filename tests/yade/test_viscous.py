@@ -11,7 +11,7 @@ from yade.wrapper import PendularMat
 
 from yade_capillary import kernels
 from yade_capillary.scene import engines
-from yade_capillary.testing import Checker
+from testing import Checker
 
 ck = Checker("test_viscous")
 # Pitois' experiment as simulated by Elskamp 2018 section 3.1 (Fig. 5b): r = 4 mm, V = 5e-10 m^3,

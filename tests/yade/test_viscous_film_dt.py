@@ -13,8 +13,8 @@ from yade.wrapper import PendularCheck, PendularMat
 
 from yade_capillary import kernels
 from yade_capillary.scene import LOOPS, engines, stable_dt
-from yade_capillary.stress import damping_ratio_x, oscillator_limit
-from yade_capillary.testing import Checker
+from stress import damping_ratio_x, oscillator_limit
+from testing import Checker
 
 ck = Checker("test_viscous_film_dt")
 RHO, TC, EN, ET, ETA = 2500.0, 2e-4, 0.8, 0.8, 0.05

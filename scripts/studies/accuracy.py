@@ -14,7 +14,7 @@ import random
 import statistics
 import subprocess
 
-from . import cases, kernels
+from yade_capillary import cases, kernels
 
 FRACTIONS = (0.0, 0.25, 0.5, 0.75, 0.95)
 GAMMA = 0.02  # [N/m]; errors do not depend on it

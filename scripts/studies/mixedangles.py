@@ -1,6 +1,6 @@
 """Unequal contact angles: the cosine of the mean angle against the mean of the cosines.
 
-Issue 11 item 6. The kernels combine the two contact angles of a bridge into one. They used the
+The kernels combine the two contact angles of a bridge into one. They used the
 mean angle, theta = (theta1 + theta2) / 2; this comparison made them use the mean of the cosines,
 theta = acos((cos theta1 + cos theta2) / 2), for the force models (``equivalent_angle`` in
 pkg/kernels/conventions.hpp), keeping the mean angle for the lian and willett rupture rules. Elskamp & Kruggel-Emden 2018 eq. (14), (15) use the mean of the
@@ -42,7 +42,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from . import kernels
+from yade_capillary import kernels
 
 SOURCE = "Elskamp & Kruggel-Emden 2018, Table 1 (contact angle with water) and Conclusions"
 Pair = namedtuple("Pair", "name body1 theta1_deg body2 theta2_deg")

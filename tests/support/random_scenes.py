@@ -24,7 +24,8 @@ import random
 
 from yade import O
 
-from . import kernels, scene, stress
+import stress
+from yade_capillary import kernels, scene
 
 CLASSES = ("explosion", "nonfinite", "negative_total", "conservation", "error")
 ETAS = (0.0, 1e-3, 5e-2)  # inviscid, water, 50 x water [Pa s]

@@ -1,4 +1,5 @@
-"""Wet scenes, time-step limit and invariant checks for the in-YADE stress tests (import inside yade only).
+"""Wet scenes, time-step limit and invariant checks for the in-YADE stress tests (import inside yade only;
+tests/support, on PYTHONPATH under ctest).
 
 Used by tests/yade/test_stress_dynamic.py, test_threads.py and test_save_continue.py:
 
@@ -18,7 +19,7 @@ from yade import O, geom, pack
 from yade.utils import sphere, wall
 from yade.wrapper import InteractionLoop, PendularMat, Sphere
 
-from . import scene as _scene
+from yade_capillary import scene as _scene
 
 LIQUID_RTOL = 1e-12  # liquid balance, relative to the liquid formed so far (the largest of the totals)
 
@@ -191,7 +192,7 @@ def state_vector():
 
 
 def repo_root():
-    """The source tree (the package's files in build/python are links to py/yade_capillary)."""
+    """The source tree (this file is tests/support/stress.py)."""
     import os
     return os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 

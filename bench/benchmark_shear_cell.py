@@ -6,11 +6,11 @@
 # run. A benchmark, not a test.
 # Then, on two threads or more, repeated pairs of PendularLoop runs, one thread then two, in turn on one scene:
 # the spread and median of the gain from the second thread (one pair is as noisy as the machine).
-# Run:  build/yade-capillary -j2 -n -x scripts/benchmark_shear_cell.py [config] [steps] [cache] [pairs]
-#   config: ci (default) or validation_probe (the validation cell, about 15 000 flowing spheres);
+# Run:  build/yade-capillary -j2 -n -x bench/benchmark_shear_cell.py [config] [steps] [cache] [pairs]
+#   config: ci (default) or validation_probe (the validation cell for a short run, about 15 000 flowing spheres; benchmark.py);
 #   cache: file of the prepared cell, made if missing ('' or none: a temporary file, removed at exit); pairs: 10 by default, 0 for none.
 # Each run is printed with the core-to-core round trip measured just before it (build/core_latency):
-# a two-vCPU VM may have a mode in which two threads gain far less (round trip 300-420 ns instead of 55-110), and
+# a virtual machine may have a mode in which two threads gain far less (a round trip several times longer), and
 # a ratio of thread counts holds only between runs of the same mode; and with the machine's parallel
 # speed just before it (core_latency --parallel: 1 when two threads get two cores' worth of private
 # work, 0.5 when each runs at half speed, which such a VM also does at times, at any round trip).
@@ -23,7 +23,8 @@ import tempfile
 
 from yade import O
 
-from yade_capillary import benchmark
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # bench/benchmark.py; yade does not put the script's folder on sys.path
+import benchmark  # noqa: E402
 
 config = sys.argv[1] if len(sys.argv) > 1 else "ci"
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
@@ -51,8 +52,8 @@ for key in results[threads[0]][2]["phases"]:
 for k, name in enumerate(NAMES):
     print("  speed-up from %d threads, %-32s %.2f" % (threads[-1], name, results[threads[-1]][k]["particle_steps_per_s"] / results[1][k]["particle_steps_per_s"]))
 if pairs > 0 and threads[-1] >= 2:
-    # Classed by what was measured just before the two-thread run: the round trip (the slow mode of such a VM
-    # starts at about 250 ns) and the parallel speed (below 0.9: a stretch without two cores' worth).
+    # Classed by what was measured just before the two-thread run: the round trip (above slow_mode [ns]: the slow
+    # mode of a virtual machine) and the parallel speed (below 0.9: a stretch without two cores' worth).
     slow_mode, full_speed = 250, 0.9
     runs = benchmark.thread_pairs(pairs, steps, config=config, cache=cache)
     print("(b) shear cell %s, ours with PendularLoop, %d pairs of %d steps on one thread then two, in turn on one scene:" % (config, pairs, steps))

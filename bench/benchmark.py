@@ -1,4 +1,5 @@
-"""Side-by-side speed measurements of our loop and law and YADE's built-in capillary law (inside yade).
+"""Side-by-side speed measurements of our loop and law and YADE's built-in capillary law (inside yade; the
+developer's benchmark module of bench/, imported by the bench/benchmark_*.py scripts).
 
 packing(): n^3 spheres on a touching simple-cubic lattice with random velocities, no gravity,
 every neighbour pair bridged at the first step (3 n^2 (n-1) bridges; 11 520 for n = 16). Every
@@ -19,7 +20,11 @@ from yade.utils import sphere
 from yade.wrapper import (Ig2_Sphere_Sphere_ScGeom, InteractionLoop, Ip2_ViscElCapMat_ViscElCapMat_ViscElCapPhys,
                           Law2_ScGeom_ViscElCapPhys_Basic, PendularMat, ViscElCapMat)
 
-from .scene import engines
+from yade_capillary import shearcell
+from yade_capillary.scene import engines
+
+# The validation cell for a short run: the speed of the shear cell at its full size (bench/benchmark_shear_cell.py).
+shearcell.CONFIGS["validation_probe"] = dict(shearcell.VALIDATION, settle_s=0.2, run_s=0.2, snapshots=4, snapshot_dt_s=0.02)
 
 # Gladkyy 2014 shear-cell particles (section 4.1) with the W11 bridge volume.
 R, RHO, TC, EN, GAMMA, VB = 2.381e-3, 150.0, 5.4e-4, 0.83, 20.6e-3, 13.6e-12
@@ -182,7 +187,7 @@ def end_stamp():
     for e in O.engines:
         if e.label == END_STAMP:
             return e
-    stamp = PyRunner(command="__import__('yade_capillary.benchmark', fromlist=['_stamp_end'])._stamp_end()", initRun=False, label=END_STAMP)
+    stamp = PyRunner(command="__import__('%s', fromlist=['_stamp_end'])._stamp_end()" % __name__, initRun=False, label=END_STAMP)
     O.engines = O.engines + [stamp]
     return stamp
 
@@ -191,12 +196,10 @@ def timed_steps(n):
     """Run n steps of O (O.run, in YADE's simulation thread, then O.wait as O.run(n, True) does); returns the
     wall time [s] from O.run to the end of the n-th step, stamped by the END_STAMP PyRunner in that step
     (firstIterRun), which must be the last engine (end_stamp). Not the time at which the wait returns: O.wait
-    polls every 40 ms (O.run(1, True) without engines took 40.3 ms here), which added 0-40 ms at random to every
-    timed run. Not a poll of O.running every millisecond either:
-    on a two-vCPU machine its 1000 wake-ups per second share the cores with the two threads of a two-thread
-    run (ci cell, 1000-step runs alternated in one process, both stamped: a two-thread step 5 %, 3.4 % and 1 %
-    slower with the 1 ms poll than with 50 ms polls, medians of 10, 12 and 24 runs). O.run, not O.step() in a
-    loop: the steps run in YADE's simulation thread, as in the runs of users' scripts."""
+    polls every 40 ms, which would add 0-40 ms at random to every timed run. Not a poll of O.running every
+    millisecond either: on two cores its 1000 wake-ups per second share them with the two threads of a
+    two-thread run and slow it down (docs/performance.md). O.run, not O.step() in a loop: the steps run in
+    YADE's simulation thread, as in the runs of users' scripts."""
     if n < 1 or O.iter + n - 1 < 1:
         raise ValueError("timed_steps: n = %d from iteration %d; needs n >= 1 and a last step after iteration 0 (PyRunner.firstIterRun > 0)"
                          % (n, O.iter))
@@ -228,8 +231,6 @@ class _Cell:
         import json
         import tempfile
 
-        from . import shearcell
-
         path = cache or os.path.join(tempfile.mkdtemp(), "cell.yade.gz")
         if not os.path.exists(path):
             shearcell.prepare(config, case, path, log=lambda *a: None)
@@ -255,8 +256,6 @@ class _Cell:
         on `nthreads` threads, run 100 steps (interactions and bridges in place before timing). YADE's own setup
         (NewtonIntegrator) for the built-in law and our Law2 in InteractionLoop; PendularLoop with
         PendularIntegrator, as scene.engines gives them by default."""
-        from . import shearcell
-
         O.reset()
         O.dt = self.dt
         mat = O.materials.append(material)
@@ -282,8 +281,8 @@ def shear_cell(steps=2000, config="ci", case="wet13.6nl", repeats=2, cache=None,
     (willett_full) in YADE's InteractionLoop and in PendularLoop, same positions, same time step,
     in one run: particle-steps per second of each (fastest of `repeats` interleaved runs; threads
     threads: the numbers of OpenMP threads to measure, interleaved in the same process (every engine's
-    ompThreads; yade must be started with -j at least the largest): a shared machine's speed drifts by
-    up to 3x within minutes, so thread counts are compared within one run. cache: file of the
+    ompThreads; yade must be started with -j at least the largest): a shared machine's speed drifts within
+    minutes, so thread counts are compared within one run. cache: file of the
     prepared cell, prepared there if missing. Returns {threads: (builtin, ours standard, ours
     fused, ours fused with parallelBodies = 20000 in PendularLoop and PendularIntegrator, ours fused
     with YADE's NewtonIntegrator instead of PendularIntegrator)} of dicts: the fourth tells what the
@@ -398,7 +397,8 @@ def _core_latency(*args):
     """What build/core_latency prints with `args`, as a float; None if it is not built."""
     import subprocess
 
-    exe = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "core_latency")  # the package is in build/python
+    build = os.environ.get("BUILD_DIR") or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "build")
+    exe = os.path.join(build, "core_latency")
     if not os.path.exists(exe):
         return None
     return float(subprocess.run([exe, *args], capture_output=True, text=True, check=True).stdout)
@@ -406,17 +406,17 @@ def _core_latency(*args):
 
 def core_round_trip():
     """The round trip of a cache line between two threads [ns] (build/core_latency, median of 7 batches),
-    None if it is not built. On this project's two-vCPU VM it is 55-110 ns in one mode and 300-420 ns in
-    the other (probably the vCPUs sharing a cache or not); in the second a step of the ci cell on two threads
-    ran at 0.8-1.1x of one thread (1.3-1.5x once the gathering streamed the bodies that the other thread reads), so a ratio of thread counts means something only with the round trips of its runs."""
+    None if it is not built. A virtual machine's vCPUs may share a cache or not, and switch between the two
+    (docs/performance.md): two threads gain much less in the slow mode, so a ratio of thread counts means
+    something only with the round trips of its runs."""
     return _core_latency()
 
 
 def parallel_speed():
     """The machine's parallel speed just now [-] (build/core_latency --parallel, about 20 ms): the time per
     record of one thread updating its own records alone over that of each of two threads doing as much at
-    once; 1 when the two vCPUs give two cores' worth, 0.5 when each runs at half speed (on this project's
-    VM, 27 of 300 samples over 7 minutes, at any round trip). None if it is not built."""
+    once; 1 when two cores' worth is there, 0.5 when each thread runs at half speed (a virtual machine does
+    at times, at any round trip). None if it is not built."""
     return _core_latency("--parallel")
 
 
@@ -462,8 +462,6 @@ def gladkyy_probe(steps=1000, case="wet13.6nl", loop="fused", run_s=5.0, chunk=1
     its bridges, `case` ignored) to probe instead of the lattice. A lattice built touching is still
     collapsing in the timed steps: its spheres move faster than in a settled, sheared cell, so the collider
     runs more often (collider_runs_per_step tells)."""
-    from . import shearcell
-
     if state is None:
         cfg = shearcell.GLADKYY_SIZE
         ids = shearcell.build(cfg, case, spacing=2.0, fill=1.2)

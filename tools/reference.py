@@ -249,15 +249,17 @@ def _scene_section():
 def markdown(classes=None):
     """The page docs/reference.md: every class of `classes` (default: plugin_classes()), then the
     helpers of yade_capillary.scene. Ends with exactly one newline."""
-    # Importing yade_capillary.scene wraps some of the plugin's methods (yade_capillary.objects.guard), which
-    # notes it in their docstrings: the page shows them so, whether or not the caller imported it already.
-    import yade_capillary.scene  # noqa: F401
+    # yade_capillary.patches wraps some of the plugin's methods and notes it in their docstrings: the page
+    # shows them so, whether or not the caller installed the patches already.
+    from yade_capillary import patches
+
+    patches.install()
 
     classes = _sorted(classes if classes is not None else plugin_classes())
     r = _Renderer(classes)
     lines = ["# Class reference", "",
              "The classes that the yade-capillary plugin (%s) registers in YADE, generated from the docstrings of the "
-             "build by `py/yade_capillary/reference.py`; do not edit by hand. Regenerate it with" % PLUGIN_LIBRARY, "",
+             "build by `tools/reference.py`; do not edit by hand. Regenerate it with" % PLUGIN_LIBRARY, "",
              "    " + REGENERATE, "",
              "(`tests/yade/test_reference.py` fails when this page differs from what the build generates).", "",
              "Each class lists its own attributes, not those inherited from its base (see YADE's reference for those). "

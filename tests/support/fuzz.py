@@ -16,15 +16,15 @@ Everything else is counted as a failure: ``nan``, ``inf``, ``negative``, ``nonze
 disagree on accepting the same bridge), ``hang`` (no answer within ``timeout`` seconds) and ``crash``
 (the process died). Calls run in a worker process (a hang in C++ cannot be interrupted in-process):
 on a hang or crash the worker is replaced and the run goes on with the next bridge. A worker is a
-fresh interpreter (``python3 -m yade_capillary.fuzz``), neither a fork of the caller (a fork copies the
-locks that the caller's threads may hold at that moment, pytest's or BLAS's, and a worker that inherits
-a held lock waits forever: 19 false hangs in one run of the full suite) nor a multiprocessing spawn
+fresh interpreter (``python3 -m fuzz``), neither a fork of the caller (a fork copies the locks that the
+caller's threads may hold at that moment, pytest's or BLAS's, and a worker that inherits a held lock
+waits forever, reported as a false hang) nor a multiprocessing spawn
 (which runs the caller's main script again: a script calling ``run`` at top level, or yade itself).
 
 Deterministic: bridge i is drawn from ``numpy.random.default_rng([seed, i])``, independent of the
 chunking. Half of the bridges pass ``extrapolate=True``.
 
-    from yade_capillary import fuzz
+    import fuzz                            # tests/support, with build/python on PYTHONPATH
     report = fuzz.run(100000, seed=1)      # number of force evaluations
     print(fuzz.format_report(report)); assert not fuzz.failures(report)
 """
@@ -38,7 +38,7 @@ from multiprocessing.connection import Connection
 
 import numpy as np
 
-from . import kernels
+from yade_capillary import kernels
 
 # Parameter names a ValueError may name (how the kernels spell them in messages).
 NAMES = ("R1", "R2", "volume", "gamma", "theta", "theta1", "theta2", "rupture", "model", "linear_fmax", "linear_kc",
@@ -206,13 +206,13 @@ def check_bridge(spec, monotone, counts):
 
 
 class _Worker:
-    """A worker process (``python3 -m yade_capillary.fuzz FD SEED START STOP``) that evaluates bridges
+    """A worker process (``python3 -m fuzz FD SEED START STOP``) that evaluates bridges
     start..stop-1 and sends each one's counts through the pipe whose write end is its FD."""
 
     def __init__(self, seed, start, stop):
         read, write = os.pipe()
-        package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # where this yade_capillary lives
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join([package] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
+        here = os.path.dirname(os.path.abspath(__file__))  # this module's folder, for -m; yade_capillary comes from PYTHONPATH
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join([here] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
         python = sys.executable if os.path.basename(sys.executable).startswith("python") else "/usr/bin/python3"  # not yade's launcher
         self.proc = subprocess.Popen([python, "-m", __name__, str(write), str(seed), str(start), str(stop)], pass_fds=(write,), env=env,
                                      stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)

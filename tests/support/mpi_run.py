@@ -1,6 +1,7 @@
-# A wet scene run serially or with YADE's MPI module (yade.mpy) on several ranks:
-#   build/yade-capillary -n -x scripts/mpi_run.py SCENE OUT.json [steps] [error]
-#   mpiexec --allow-run-as-root -n 3 build/yade-capillary -n -x scripts/mpi_run.py SCENE OUT.json [steps] [error]
+# A wet scene run serially or with YADE's MPI module (yade.mpy) on several ranks, the driver of
+# tests/python/test_mpi.py (the scenes come from tests/support/stress.py, hence PYTHONPATH):
+#   PYTHONPATH=tests/support build/yade-capillary -n -x tests/support/mpi_run.py SCENE OUT.json [steps] [error]
+#   PYTHONPATH=tests/support mpiexec --allow-run-as-root -n 3 build/yade-capillary -n -x tests/support/mpi_run.py SCENE OUT.json [steps] [error]
 # SCENE: packing (300 spheres in a box of walls, random velocities, gravity) or shear_cell (the ci
 # split-bottom cell filled densely, rotating). The dynamic spheres are split into slabs along x,
 # one per worker rank (rank 0, the master, keeps the walls and the rotating wall spheres). The
@@ -13,7 +14,8 @@ import sys
 from yade import O
 from yade.wrapper import PendularMat
 
-from yade_capillary import mpi, scene, shearcell, stress
+import stress
+from yade_capillary import mpi, scene, shearcell
 
 what, out = sys.argv[1], sys.argv[2]
 steps = int(sys.argv[3]) if len(sys.argv) > 3 else 1000

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 # Kernel fuzz, nightly size: 1e6 force evaluations over every model x rupture rule with wide and
-# absurd inputs (py/yade_capillary/fuzz.py); prints the counts of every outcome and exits 1 if any
+# absurd inputs (tests/support/fuzz.py); prints the counts of every outcome and exits 1 if any
 # failure category is non-zero. Plain python3:
-#   PYTHONPATH=build/python python3 scripts/fuzz_kernels.py [n_evaluations=1e6] [seed=1]
+#   PYTHONPATH=build/python /usr/bin/python3 tests/fuzz_kernels.py [n_evaluations=1e6] [seed=1]
 # (the CI size, 1e5, is tests/python/test_fuzz.py)
+import os
 import sys
 
-from yade_capillary import fuzz
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+import fuzz  # noqa: E402
 
 n = int(float(sys.argv[1])) if len(sys.argv) > 1 else 1000000
 seed = int(sys.argv[2]) if len(sys.argv) > 2 else 1

@@ -6,12 +6,14 @@
 # 40^3 packing. Prints ns per
 # bridge-step of the interaction loop, ratios to the baseline, PendularLoop's phases and the
 # bytes per bridge. A benchmark, not a test: timings on shared machines are noisy.
-# Run:  build/yade-capillary -j1 -n -x scripts/benchmark_packing.py [n] [steps]
+# Run:  build/yade-capillary -j1 -n -x bench/benchmark_packing.py [n] [steps]
+import os
 import sys
 
 from yade import O
 
-from yade_capillary import benchmark
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # bench/benchmark.py; yade does not put the script's folder on sys.path
+import benchmark  # noqa: E402
 
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 16
 steps = int(sys.argv[2]) if len(sys.argv) > 2 else 1000

@@ -7,11 +7,12 @@
 # repository does not carry it, see docs/validation.md), else from `lattice`: the cell built touching
 # (spheres still collapsing, so the collider runs more often than in a run). A benchmark, not a test.
 # Run with the threads to project for, e.g.
-#   build/yade-capillary -j2 -n -x scripts/benchmark_gladkyy_probe.py [steps [STATE.npz | lattice]]
+#   build/yade-capillary -j2 -n -x bench/benchmark_gladkyy_probe.py [steps [STATE.npz | lattice]]
 import os
 import sys
 
-from yade_capillary import benchmark
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # bench/benchmark.py; yade does not put the script's folder on sys.path
+import benchmark  # noqa: E402
 
 steps = int(sys.argv[1]) if len(sys.argv) > 1 else 1000
 DEFAULT_STATE = os.path.join("data", "shear_cell_runs", "gladkyy_size", "wet13.6nl", "state.npz")

@@ -1,0 +1,68 @@
+// Ip2_PendularMat_PendularMat_PendularPhys: the PendularPhys of two PendularMat bodies (contact
+// parameters and bridge), with the input errors and critical time steps it hands to PendularCheck.
+#pragma once
+
+#include "PendularMat.hpp"
+#include "PendularPhys.hpp"
+#include "YadeHeaders.hpp"
+
+#include <limits>
+#include <mutex>
+#include <string>
+
+namespace yade {
+
+class Ip2_PendularMat_PendularMat_PendularPhys : public IPhysFunctor {
+public:
+	void go(const shared_ptr<Material>& m1, const shared_ptr<Material>& m2, const shared_ptr<Interaction>& I) override;
+	// Two-body critical time step [s] of bodies id1 and id2 of the current scene, whatever their distance.
+	Real criticalDt(Body::id_t id1, Body::id_t id2);
+	// For PendularCheck, in serial code: the first input error met in the current step of `scene`
+	// ("" if none; an error of an earlier step or another scene is dropped), and the smallest
+	// critical time step of the interactions created since the last call (inf if none).
+	std::string takeError(Scene* scene);
+	struct PairDt {
+		Real       dt = std::numeric_limits<Real>::infinity();
+		Body::id_t id1 = -1, id2 = -1; // the pair that has it (-1 if none)
+	};
+	PairDt takeCriticalDt();
+	FUNCTOR2D(PendularMat, PendularMat);
+	DECLARE_LOGGER;
+
+private:
+	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void setLiquid(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void setFilm(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void report(const std::string& message, const Interaction& I);
+	// Written from InteractionLoop's OpenMP threads, hence the locks.
+	std::mutex  errorMutex, dtMutex;
+	bool        errorPending = false;
+	std::string error;
+	Scene*      errorScene       = nullptr;
+	long        errorIter        = -1;
+	long        stopAtIterBefore = 0;
+	PairDt      newCriticalDt;
+
+public:
+	// clang-format off
+	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
+		"Creates :yref:`PendularPhys` from two :yref:`PendularMat`. Mixing rules: tc, en, et arithmetic means; kn, cn, ks, cs "
+		"in series; friction angle the smaller; Vb and gamma arithmetic means; contact angles kept per body; model, rupture rule, "
+		"forceInContact and linear parameters must be equal (else an error). Effective mass m1 m2/(m1+m2), where a body that is "
+		"not dynamic counts as infinitely heavy (unless neither is dynamic). A body whose shape is not a Sphere (wall, facet) "
+		"is a plane for the bridge. Input errors are raised by :yref:`PendularCheck`: if only the liquid is wrong, the pair "
+		"gets the contact law without a bridge; if the contact parameters are wrong, the interaction is reset and the error "
+		"comes again at every step.",
+		/*attrs*/,
+		/*ctor*/,
+		.def("criticalDt", &Ip2_PendularMat_PendularMat_PendularPhys::criticalDt, (boost::python::arg("id1"), boost::python::arg("id2")),
+		     "Two-body critical time step [s] of bodies id1 and id2 of the current scene (their contact parameters and masses, "
+		     "whatever their distance): the stability limit of YADE's leapfrog for the normal and the tangential spring-dashpot, "
+		     "dt_c = (2/w0)(sqrt(1+z^2) - z), w0^2 = k/m, z = c/(2 sqrt(k m)); tangential mass 1/(1/m + r^2/I) per dynamic sphere. "
+		     "See yade_capillary.scene.stable_dt.")
+	);
+	// clang-format on
+};
+REGISTER_SERIALIZABLE(Ip2_PendularMat_PendularMat_PendularPhys);
+
+} // namespace yade
