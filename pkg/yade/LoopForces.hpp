@@ -8,7 +8,7 @@
 // reset that PendularForceResetter hands to the gathering, ForceReset) as InteractionLoop's per-thread
 // ones do, unless an engine between them added forces. Owns the per-thread arrays, the direct parts,
 // the reset handed over and the team of the last flush. What adds one interaction's forces into them
-// (ThreadSink) is defined where the law is called, in PendularLoop.cpp (see there); the hand-overs, once
+// (ThreadSink) is defined where the law is called, in PendularLoop_Pass.cpp (see there); the hand-overs, once
 // per step, are out of line.
 #pragma once
 

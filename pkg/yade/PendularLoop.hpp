@@ -4,8 +4,8 @@
 // work partition between threads (LoopPartition.hpp), the record store (LoopRecords.hpp), the force
 // accumulation (LoopForces.hpp), the container sort (LoopSort.hpp), the sphere geometry
 // (LoopGeometry.hpp) and the instrumentation (LoopInstrumentation.hpp). It keeps the order of a step's
-// phases (action), the per-interaction pass (visit and what it calls), YADE's dispatch for the other
-// interactions, and the entry points from Python.
+// phases (action, PendularLoop.cpp), the per-interaction pass (visit and what it calls) with YADE's
+// dispatch for the other interactions (PendularLoop_Pass.cpp), and the entry points from Python.
 #pragma once
 
 #include "LoopBodies.hpp"
