@@ -1,3 +1,5 @@
+// PendularLoop's force accumulation, its once-per-step parts (see LoopForces.hpp): the hand-over of the
+// border bodies' forces during a pass and the flush into YADE's force container after it.
 #include "LoopForces.hpp"
 #include "LoopInstrumentation.hpp"
 

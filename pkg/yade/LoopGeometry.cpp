@@ -1,3 +1,5 @@
+// The sphere geometry's out-of-line part (see LoopGeometry.hpp): ScGeom's shear increment, which only
+// contacts and the making of objects from records call.
 #include "LoopGeometry.hpp"
 
 namespace yade {

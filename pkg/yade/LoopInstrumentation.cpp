@@ -1,3 +1,5 @@
+// PendularLoop's instrumentation, out of line (see LoopInstrumentation.hpp): the memory figures of
+// PendularLoop.memory().
 #include "LoopInstrumentation.hpp"
 #include "LoopBodies.hpp"
 #include "LoopPairs.hpp"

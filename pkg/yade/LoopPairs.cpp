@@ -1,3 +1,5 @@
+// PendularLoop's pairs, their once-per-full-pass part (see LoopPairs.hpp): the list of entries to visit
+// merged from the threads' lists, and the bytes the pairs hold.
 #include "LoopPairs.hpp"
 #include "LoopInstrumentation.hpp"
 

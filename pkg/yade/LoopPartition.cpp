@@ -1,3 +1,5 @@
+// PendularLoop's work partition, out of line (see LoopPartition.hpp): the cut of the bodies and of the
+// list into the threads' parts after a full pass, from the estimated costs and the measured paces.
 #include "LoopPartition.hpp"
 #include "LoopInstrumentation.hpp"
 

@@ -1,3 +1,5 @@
+// PendularLoop's record store, out of line (see LoopRecords.hpp): loading and storing a record, the
+// shared invariants and their key, reconciling the records with the container, the sync with YADE's objects.
 #include "LoopRecords.hpp"
 #include "LoopInstrumentation.hpp"
 

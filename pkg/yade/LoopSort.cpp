@@ -1,3 +1,5 @@
+// PendularLoop's container sort, out of line (see LoopSort.hpp): the counting sort of YADE's interaction
+// container by (id1, id2), with its slots.
 #include "LoopSort.hpp"
 
 #include <algorithm>

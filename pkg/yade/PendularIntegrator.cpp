@@ -1,3 +1,4 @@
+// PendularIntegrator (see PendularIntegrator.hpp): the parameters read from its NewtonIntegrator, the per-body pass by parts and the fallback to NewtonIntegrator.
 #include "PendularIntegrator.hpp"
 #include "Pendular.hpp"
 #include "PendularLoop.hpp"
