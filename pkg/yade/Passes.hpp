@@ -119,10 +119,11 @@ namespace pendular {
 	}
 	// stored = value with streaming stores, which bypass the caches: for data that another core reads after
 	// this step's barrier. A plain store to a line that the other core read in the last step waits for that
-	// copy to be invalidated: about 50 ns per line when the two vCPUs of a VM are far apart (round
-	// trip above 300 ns), 10 when near. The other core then reads the line from memory. The writer calls
-	// streamFence before the barrier (streaming stores are not ordered with the others). A plain copy where
-	// there are no SSE2 streaming stores.
+	// copy to be invalidated, a round trip between the cores, which on virtual machines can take several
+	// hundred ns (docs/performance.md, "Method" and "Bodies that another thread reads gathered with streaming
+	// stores"). The other core then reads the line from memory. The writer calls streamFence before the
+	// barrier (streaming stores are not ordered with the others). A plain copy where there are no SSE2
+	// streaming stores.
 	template <class T> inline void streamStore(T& stored, const T& value)
 	{
 #ifdef __SSE2__
@@ -142,7 +143,7 @@ namespace pendular {
 #endif
 	}
 	// Entries [first, last) of v set to zero, as the Reals they are (YADE asserts sizeof(Vector3r) == 3 sizeof(Real)),
-	// which the compiler makes one memset as ForceContainer::reset's (a fill by Vector3r took 3 µs instead of 1 on the ci cell).
+	// which the compiler makes one memset as ForceContainer::reset's (a fill by Vector3r is a loop of three stores per entry).
 	inline void zeroEntries(Vector3r* v, long first, long last)
 	{
 		if (last > first) std::fill_n(v[first].data(), 3 * (last - first), Real(0));

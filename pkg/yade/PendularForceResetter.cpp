@@ -1,3 +1,4 @@
+// PendularForceResetter (see PendularForceResetter.hpp): which steps the zeroing is left to PendularLoop's gathering, and the zeroing by parts.
 #include "PendularForceResetter.hpp"
 #include "PendularLoop.hpp"
 

@@ -1,3 +1,4 @@
+// PendularIntegrator (see PendularIntegrator.hpp): the parameters read from its NewtonIntegrator, the per-body pass by parts and the fallback to NewtonIntegrator.
 #include "PendularIntegrator.hpp"
 #include "Pendular.hpp"
 #include "PendularLoop.hpp"
@@ -227,9 +228,9 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 	ForceContainer& forces = scene->forces;
 	forces.sync();
 	// The container's summed entries themselves (what getForce and getTorque return once synced), without two
-	// calls into libyade per body: this pass took 47-51 µs per step of the ci cell on one thread with them, 40-46
-	// without (8 alternating runs of 1000 steps, docs/performance.md). None if the container does not cover every body
-	// (getForce's zero beyond its entries): then the calls.
+	// calls into libyade per body, which the compiler cannot inline (docs/performance.md, "Per-body checks
+	// without two calls into libyade"). None if the container does not cover every body (getForce's zero
+	// beyond its entries): then the calls.
 	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
 	Real flag  = 0;
 	long count = 0;
@@ -289,9 +290,9 @@ Real PendularIntegrator::integrate(const Parameters& p, const pendular::BodyPoin
 		const Real angle2 = s.angVel.squaredNorm();
 		if (angle2 != 0) {
 			// The rotation of this step, made again only for another angular velocity: the bodies of a
-			// rotating wall (RotationEngine) share one. In the ci cell (588 of its 2 200 bodies, all in one
-			// thread's part) this pass took 52-55 µs per step on one thread before, 41-44 after. The same
-			// inputs give the same quaternion: bit-identical to NewtonIntegrator.
+			// rotating wall (RotationEngine) share one, and a quaternion from an angle-axis is a sine, a
+			// cosine and a square root (docs/performance.md, "The rotation of a step made once per angular
+			// velocity"). The same inputs give the same quaternion: bit-identical to NewtonIntegrator.
 			if (s.angVel != rotated) {
 				const Real angle = math::sqrt(angle2);
 				rotated          = s.angVel;

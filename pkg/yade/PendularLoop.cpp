@@ -1,19 +1,14 @@
+// PendularLoop: the coordinator of the fused pass (see PendularLoop.hpp): the order of a step's
+// phases (action), the gathering of the bodies, the plan of the pass and what follows it, the records' entry
+// points from Python. The pass itself, one entry of the container at a time, is in PendularLoop_Pass.cpp.
 #include "PendularLoop.hpp"
-#include "Passes.hpp"
+#include "LoopSort.hpp"
 
-#include <pkg/common/Facet.hpp>
 #include <pkg/common/InsertionSortCollider.hpp>
-#include <pkg/common/Wall.hpp>
-#include <pkg/dem/Ig2_Sphere_Sphere_ScGeom.hpp>
-
-#include <pkg/dem/ViscoelasticCapillarPM.hpp>
 
 #include <core/Omega.hpp>
 #include <mpi.h>
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <limits>
 #include <set>
 #include <typeinfo>
@@ -27,114 +22,10 @@ namespace yade {
 YADE_PLUGIN((PendularLoop));
 CREATE_LOGGER(PendularLoop);
 bool PendularLoop::readersGuarded = false;
+using Clock = pendular::Clock;
+using pendular::prefetchAhead;
+using pendular::prefetchObject;
 
-namespace {
-	// An interaction is three heap objects (Interaction, ScGeom, PendularPhys, ~700 B over 11 cache
-	// lines): prefetched this many interactions ahead, the Interaction itself twice as far.
-	using pendular::prefetchObject;
-	constexpr long prefetchAhead = 8;
-	// An epoch of the bound on the gaps of potential pairs (gather) ends when a body has moved this
-	// fraction of the smallest sphere radius from where it was at its start.
-	constexpr Real epochMove = 0.1;
-	// Entries of the container per chunk of the pass's static schedule: small enough that the threads
-	// get nearly equal shares of a short list (1024 gave one of two threads 4 chunks of the ci cell's 7,
-	// 14 % more than half), large enough that a thread's entries stay mostly contiguous.
-	constexpr long passChunk = 256;
-
-	// Sorts (key, entry) pairs by key, key = id1 << 32 | id2 (see Slot::key), id1 below `bound` (the
-	// number of bodies): a counting pass by id1, then by id2 within each id1 (a few entries each).
-	// std::sort took about 0.7 ms of the ci cell's 1.4 ms sort of 13 600 entries, at nearly every run of
-	// the collider. Keys are unique pairs of ids, so the result is the one sorted order.
-	void sortByKey(std::vector<std::pair<uint64_t, size_t>>& order, uint64_t bound)
-	{
-		uint64_t largest = 0;
-		for (const auto& entry : order)
-			largest = std::max(largest, entry.first >> 32);
-		if (largest >= bound) { // not ids of the scene's bodies: no counting array that large
-			std::sort(order.begin(), order.end());
-			return;
-		}
-		std::vector<size_t> start(size_t(largest) + 2, 0);
-		for (const auto& entry : order)
-			++start[size_t(entry.first >> 32) + 1];
-		for (size_t id = 1; id < start.size(); ++id)
-			start[id] += start[id - 1];
-		std::vector<std::pair<uint64_t, size_t>> byId1(order.size());
-		for (const auto& entry : order)
-			byId1[start[size_t(entry.first >> 32)]++] = entry;
-		for (size_t first = 0, id = 0; id + 1 < start.size(); ++id) { // start[id] is now the end of id1 = id
-			std::sort(byId1.begin() + long(first), byId1.begin() + long(start[id]));
-			first = start[id];
-		}
-		order.swap(byId1);
-	}
-
-	// The largest float not above x: a lower bound that fits the 32-byte slot.
-	float roundedDown(Real x)
-	{
-		float f = float(x);
-		if (Real(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-		return f;
-	}
-
-	// What a recorded interaction holds instead of its own ScGeom and PendularPhys: one pair for all,
-	// never read or written by the loop (the record is the state). YADE's collider only asks whether an
-	// interaction has both (Interaction::isReal); a law that ever read them would find kn = 0 and reset
-	// the interaction (our law's check of rejected contact parameters) rather than compute with them.
-	const shared_ptr<IGeom>& placeholderGeom()
-	{
-		static const shared_ptr<IGeom> geom(new ScGeom());
-		return geom;
-	}
-	const shared_ptr<IPhys>& placeholderPhys()
-	{
-		static const shared_ptr<IPhys> phys(new PendularPhys());
-		return phys;
-	}
-	bool holdsPlaceholders(const Interaction& I) { return I.geom == placeholderGeom(); }
-
-	// Forces of the fused pass: a thread adds those of the bodies of its part straight into the force
-	// container's summed arrays (no other thread writes them), the others into its own arrays indexed by
-	// body id, handed over once per body at the end of the step (PendularLoop::flushForces). In one
-	// thread the sums are those of InteractionLoop, in the same order: the summed entries start from
-	// zero (ForceResetter) as InteractionLoop's per-thread ones do, unless an engine between them added forces.
-	struct ThreadSink {
-		const PendularLoop::DirectPart& direct;
-		Vector3r *                      forces, *torques;
-		Body::id_t                      id1, id2;
-		bool                            enabled; // Interaction::isActive
-		__attribute__((always_inline)) Vector3r& forceOf(Body::id_t id) const { return direct.has(id) ? direct.forces[id] : forces[id]; }
-		__attribute__((always_inline)) Vector3r& torqueOf(Body::id_t id) const { return direct.has(id) ? direct.torques[id] : torques[id]; }
-		// Inlined: called once per bridge-step, a call cost more than the six additions.
-		__attribute__((always_inline)) void force1(const Vector3r& f) const
-		{
-			forceOf(id1) -= f;
-			forceOf(id2) += f;
-		}
-		__attribute__((always_inline)) void forceTorque(const Vector3r& f, const Vector3r& t1, const Vector3r& t2) const
-		{
-			if (!enabled) return;
-			force1(f);
-			torqueOf(id1) += t1;
-			torqueOf(id2) += t2;
-		}
-		__attribute__((always_inline)) void force(const Vector3r& f) const
-		{
-			if (enabled) force1(f);
-		}
-	};
-} // namespace
-
-// The functors YADE's dispatchers choose for two PendularMat spheres, resolved once per step with
-// sample objects (a dispatcher resolves by class only). The fused pass is used only when they are
-// exactly the functors it reproduces.
-struct PendularLoop::Resolved {
-	const Ig2_Sphere_Sphere_ScGeom*          ig2 = nullptr;
-	Ip2_PendularMat_PendularMat_PendularPhys* ip2 = nullptr;
-	Law2_ScGeom_PendularPhys_Bridge*         law = nullptr; // also for walls and facets
-	bool                                     fused = false;
-	vector<IntrCallback::FuncPtr>            callbacks;
-};
 
 void PendularLoop::resolve(Resolved& r)
 {
@@ -157,501 +48,203 @@ void PendularLoop::gather(int threads)
 {
 	const auto&  bodies = scene->bodies->body; // the vector itself: BodyContainer::operator[] is a call into libyade per body
 	const size_t n      = bodies.size();
-	particles.swap(previous); // the last pass's particles stay readable for the records' shearInc (shearIncrement)
-	// New entries defined: the sweep compares before it writes.
-	particles.resize(n, Particle { Vector3r::Zero(), Vector3r::Zero(), 0, 0, missing, Vector3r::Zero(), 0 });
-	for (auto& f : threadForce)
-		f.resize(n, Vector3r::Zero());
-	for (auto& t : threadTorque)
-		t.resize(n, Vector3r::Zero());
-	// Zeroed by the flush after it read them (see flushForces), unless a step ended before its flush.
-	if (known.forcesPending)
-		for (size_t k = 0; k < threadForce.size(); ++k) {
-			std::fill(threadForce[k].begin(), threadForce[k].end(), Vector3r::Zero());
-			std::fill(threadTorque[k].begin(), threadTorque[k].end(), Vector3r::Zero());
-		}
-	known.forcesPending = false;
-	bodyPointers.scene = nullptr; // valid once the pass is complete
-	bodyPointers.parts = bodyParts;
-	bodyPointers.states.resize(n);
-	bodyPointers.bounds.resize(n);
-	State** const       states = bodyPointers.states.data();
-	const Bound** const bounds = bodyPointers.bounds.data();
-	int                 clumps = 0, aspherical = 0, subdomains = 0;
-	const int sphereIndex = Sphere::getClassIndexStatic(), pendularIndex = PendularMat::getClassIndexStatic();
-	const int wallIndex = Wall::getClassIndexStatic(), facetIndex = Facet::getClassIndexStatic();
-	// The bound on the gaps of potential pairs. A pair checked at step s with gap g(s) stores
-	// g(s) - 2 D(s) (slot.gapBound); D is the largest distance of a body from its position at the start
-	// of the epoch, so either body moved at most D(s) + D(t) between s and t and g(t) >= g(s) - 2 D(s)
-	// - 2 D(t): the pair is still apart at step t if gapBound > 2 D(t). The epoch starts again (every
-	// potential pair checked) when a body has moved epochMove of the smallest radius, and when any
-	// body's radius, film reach, material kind or subdomain changed (Near.radius encodes them), so
-	// that the bound holds for the radii it was computed with. Films that reach beyond the surface
-	// (formation='films') change every step: no bound then. Checked in the same pass as the gathering.
-	// The bodies of an epoch are those of the pass that started it (epochPending): taken here, by each thread
-	// for its part, from that pass's particles (previous), instead of copied by one thread after it.
-	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
-	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
-	// (A reduction's private copies start at its identity, not at this value: every iteration computes its part.)
-	int        kindsChanged = 0;
-	const bool comparable   = previous.size() == n;
-	const bool takeEpoch    = known.epochPending && comparable;
-	int        restart = known.epochPending ? !comparable : epoch.size() != n, films = 0;
-	// The bodies that other threads' entries reach (sharedBodies, made by shareWork for these parts): see streamStore.
-	const bool streaming = sharedBodies.size() == n;
-	const Material*           lastMaterial = nullptr;
-	bool                      lastPendular = false;
-	shared_ptr<Material>      heldMaterial;
-	// The class index of the last shape's class, by its dynamic type (typeid reads the vtable that the object
-	// points to): Shape::getClassIndex is a virtual call into libyade per body otherwise, about 4 ns each. The
-	// gathering of the ci cell (with the other per-step work before the pass) took 47-53 µs per step on one
-	// thread with it, 41-47 without (8 alternating runs of 1000 steps, docs/performance.md). type_info objects are
-	// static: an address seen once is never another class's.
-	const std::type_info*     lastShapeType  = nullptr;
-	int                       lastShapeIndex = -1;
-	Real move2 = 0, rmin = std::numeric_limits<Real>::infinity();
-	epoch.resize(n);
+	state.snapshot.begin(n, state.partition.bodyParts);
+	state.forces.fitBodies(n);
+	// The gap bound's check of every body (see Pairs), in the same pass as the gathering. The bodies of an
+	// epoch are those of the pass that started it: taken here, by each thread for its part, from that pass's
+	// particles (previous), instead of copied by one thread after it. (A reduction's private copies start at
+	// its identity, not at this value: every iteration computes its part.)
+	const bool comparable = state.snapshot.previous.size() == n;
+	bool       takeEpoch  = false;
+	int        restart = state.pairs.startScan(n, comparable, takeEpoch), films = 0;
 	// The force container's reset handed over by PendularForceResetter (takeReset): each thread zeroes the
 	// summed forces and torques of its part of the bodies below (the cache lines it writes in the pass and
 	// reads in PendularIntegrator), the entries of no body after it.
-	const bool                   resetting = pendingReset.scene == scene && pendingReset.iter == scene->iter;
-	const long                   resetSize = pendingReset.size;
-	const pendular::SummedArrays reset     = resetting ? pendingReset.summed : pendular::SummedArrays {};
-	pendingReset                           = PendingReset {};
+	const pendular::ForceReset reset = state.forces.takeReset(scene, scene->iter);
+	// Whether a body's kind or subdomain differs from the last pass's (or the bodies are others): else
+	// every record's two bodies are still PendularMat spheres of this subdomain (see visit).
+	int                    kindsChanged = 0, clumps = 0, aspherical = 0, subdomains = 0;
+	Real                   move2 = 0, rmin = std::numeric_limits<Real>::infinity();
+	pendular::BodyReader   reader;
 	// Each thread its part of the bodies (bodyParts): the part whose interactions it computes in the pass.
 #ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) \
-        reduction(min : rmin) reduction(| : clumps, aspherical, subdomains) firstprivate(lastMaterial, lastPendular, heldMaterial, lastShapeType, lastShapeIndex)
+#pragma omp parallel num_threads(threads) if (long(n) >= parallelBodies) reduction(max : restart, films, move2, kindsChanged) reduction(min : rmin) \
+        reduction(| : clumps, aspherical, subdomains) firstprivate(reader)
 #endif
 	{
-	const auto part = pendular::partOf(bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
-	bool       streamed = false;
-	if (reset.forces) {
-		pendular::zeroEntries(reset.forces, part.first, part.second);
-		pendular::zeroEntries(reset.torques, part.first, part.second);
-	}
+	const auto part = pendular::partOf(state.partition.bodyParts, long(n), pendular::threadNumber(), pendular::teamSize());
+	reset.zero(part.first, part.second);
+	// The bodies that other threads' entries reach (sharedBodies, made by shareWork for these parts): see streamStore.
+	const bool streaming = state.partition.sharedBodies.size() == n;
+	bool       streamed  = false;
 	for (size_t id = size_t(part.first); id < size_t(part.second); ++id) {
-		// Two levels: the Body, then, once it is cached, its State and Shape (a sphere's radius is on
-		// the Shape's second cache line).
-		if (id + 2 * prefetchAhead < n && bodies[id + 2 * prefetchAhead]) prefetchObject(bodies[id + 2 * prefetchAhead].get());
-		if (id + prefetchAhead < n && bodies[id + prefetchAhead]) {
-			const Body& ahead = *bodies[id + prefetchAhead];
-			prefetchObject(ahead.state.get());
-			__builtin_prefetch(ahead.shape.get());
-			__builtin_prefetch(reinterpret_cast<const char*>(ahead.shape.get()) + 64);
-		}
+		pendular::BodySnapshot::prefetch(bodies, id, prefetchAhead);
 		// The last pass's particle: a streamed one is in memory only.
 		if (streaming && comparable && id + prefetchAhead < n) {
-			if (takeEpoch) prefetchObject(&previous[id + prefetchAhead]);
-			else __builtin_prefetch(&previous[id + prefetchAhead]);
+			if (takeEpoch) prefetchObject(&state.snapshot.previous[id + prefetchAhead]);
+			else __builtin_prefetch(&state.snapshot.previous[id + prefetchAhead]);
 		}
-		// Made in registers, stored once (below).
-		// Value-initialized: streamStore copies whole lines, padding included (never read), which GCC would
-		// otherwise warn may be uninitialized.
-		Particle    p {};
 		const auto& b = bodies[id];
 		// What PendularIntegrator reads of every body (see pendular::BodyPointers).
-		pendular::readBody(b.get(), scene->subdomain, states[id], bounds[id], clumps, aspherical, subdomains);
-		if (!b) p = Particle { Vector3r::Zero(), Vector3r::Zero(), 0, 0, missing, Vector3r::Zero(), 0 };
-		else {
-			const State& s = *b->state;
-			p.pos          = s.pos;
-			p.vel          = s.vel;
-			p.angVel       = s.angVel;
-			p.subdomain    = b->subdomain;
-			p.radius       = 0;
-			p.reach        = 0;
-			// The material's class, once per run of bodies with the same material (a virtual call per body
-			// otherwise); held while it is the last one, so that no other object can take its address.
-			if (b->material.get() != lastMaterial) {
-				heldMaterial = b->material;
-				lastMaterial = heldMaterial.get();
-				lastPendular = lastMaterial && lastMaterial->getClassIndex() == pendularIndex;
-			}
-			if (b->isClump()) p.kind = clump;
-			else if (!b->shape || !lastPendular)
-				p.kind = other;
-			else {
-				const Shape&          shapeObject = *b->shape;
-				const std::type_info& shapeType   = typeid(shapeObject);
-				if (&shapeType != lastShapeType) {
-					lastShapeType  = &shapeType;
-					lastShapeIndex = shapeObject.getClassIndex();
-				}
-				const int shape = lastShapeIndex;
-				if (shape == sphereIndex) {
-					p.kind   = pendularSphere;
-					p.radius = static_cast<const Sphere&>(*b->shape).radius;
-					// Only materials whose bridges form when the films touch reach beyond the surface.
-					if (static_cast<const PendularMat&>(*b->material).filmFormation)
-						if (const auto* film = dynamic_cast<const PendularState*>(&s)) p.reach = film->thickness(p.radius);
-				} else
-					p.kind = (shape == wallIndex || shape == facetIndex) ? pendularBoundary : other;
-			}
-		}
-		if (streaming && sharedBodies[id]) {
-			pendular::streamStore(particles[id], p);
-			streamed = true;
-		} else
-			particles[id].update(p);
-		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != previous[id].kind || p.subdomain != previous[id].subdomain));
-		if (takeEpoch) epoch[id] = nearOf(previous[id], scene->subdomain, true);
-		if (p.kind != pendularSphere) {
-			restart = math::max(restart, int(epoch[id].radius != 0));
-			continue;
-		}
-		const Near q = nearOf(p, scene->subdomain, true);
-		films    = math::max(films, int(p.reach != 0));
-		rmin     = math::min(rmin, p.radius);
-		restart  = math::max(restart, int(epoch[id].radius != q.radius));
-		move2    = math::max(move2, (p.pos - epoch[id].pos).squaredNorm());
+		pendular::readBody(b.get(), scene->subdomain, state.snapshot.pointers.states[id], state.snapshot.pointers.bounds[id], clumps, aspherical, subdomains);
+		const Particle  p    = reader.read(b.get()); // made in registers, stored once
+		const Particle& last = state.snapshot.previous[id];
+		streamed |= state.snapshot.store(id, p, streaming && state.partition.sharedBodies[id]);
+		kindsChanged = math::max(kindsChanged, int(!comparable || p.kind != last.kind || p.subdomain != last.subdomain));
+		state.pairs.observe(id, p, last, takeEpoch, scene->subdomain, restart, films, rmin, move2);
 	}
 	if (streamed) pendular::streamFence(); // before the region's barrier, after which other threads read them
 	}
-	if (reset.forces) {
-		pendular::zeroEntries(reset.forces, long(n), resetSize);
-		pendular::zeroEntries(reset.torques, long(n), resetSize);
-	}
-	bodyPointers.clumps     = clumps;
-	bodyPointers.aspherical = aspherical;
-	bodyPointers.subdomains = subdomains;
-	bodyPointers.iter       = scene->iter;
-	bodyPointers.scene      = scene;
-	const Real move         = math::sqrt(move2);
-	known.fullCheck         = restart || films || !(move < epochMove * rmin);
-	known.bodiesKept        = !kindsChanged;
-	known.films             = films;
-	known.epochPending      = known.fullCheck;
-	if (known.fullCheck) {
-		known.epochDisplacement = 0;
-		known.epochRmin         = rmin;
-		++known.epochCount;
-	} else
-		known.epochDisplacement = math::max(known.epochDisplacement, move);
+	reset.zero(long(n), reset.size);
+	state.snapshot.finish(scene, scene->iter, clumps, aspherical, subdomains);
+	state.snapshot.kindsKept = !kindsChanged;
+	state.pairs.endScan(restart, films, math::sqrt(move2), rmin);
 }
 
 void PendularLoop::action()
+{
+	Resolved r;
+	prepareStep(r);
+	const auto t0      = Clock::now();
+	const int  threads = pendular::passThreads(ompThreads);
+	// The records belong to one scene, and only to the steps where nothing else reads the objects.
+	// Handed back before the gathering: what the objects get from the records is completed from the
+	// bodies as the records' last step saw them (RecordStore::store).
+	const bool             recording = recordsAllowed(r);
+	pendular::RecordStore& records   = state.records;
+	if (!records.records.empty() && (!recording || records.scene != scene)) syncObjects(true, true);
+	records.scene           = scene;
+	loopThread              = std::this_thread::get_id();
+	const long colliderRuns = colliderRunCount();
+	records.reconcile(colliderRuns, *scene->interactions, state.pairs.slots, state.snapshot.particles);
+	if (sortPending && sortDisorder > 0 && ownsStep(r)) sortInteractions();
+	sortPending = false;
+	state.forces.useThreads(threads);
+	gather(threads); // also zeroes the force arrays after a step that ended before its flush
+	const pendular::SummedArrays summed = openContainer(threads);
+	const auto                   t1     = Clock::now();
+	const PassPlan               plan   = planPass(r, recording, colliderRuns, threads, summed);
+	const PassCounts             counts = pass(plan, r);
+	finishPass(plan, r, counts, colliderRuns);
+	const auto t2 = Clock::now();
+	// The flush may read the arrays by parts and borders (parted: each thread computed its part of the list).
+	const bool parted = plan.partsValid && counts.teamComplete;
+	state.forces.flush(scene->forces, long(state.snapshot.particles.size()), threads, parallelBodies, parted, summed.forces != nullptr,
+	                   plan.partsReady && counts.teamComplete, state.partition.bodyParts, state.partition.borders);
+	gatherTime += pendular::nanoseconds(t0, t1);
+	passTime += pendular::nanoseconds(t1, t2);
+	flushTime += pendular::nanoseconds(t2, Clock::now());
+}
+
+// The dispatchers on this scene, the functors they choose for PendularMat spheres, the callbacks.
+void PendularLoop::prepareStep(Resolved& r)
 {
 	geomDispatcher->scene = physDispatcher->scene = lawDispatcher->scene = scene;
 	geomDispatcher->updateScenePtr();
 	physDispatcher->updateScenePtr();
 	lawDispatcher->updateScenePtr();
-	Resolved r;
 	resolve(r);
 	for (const auto& cb : callbacks) {
 		cb->scene = scene;
 		r.callbacks.push_back(cb->stepInit());
 	}
-	cellHsize       = scene->isPeriodic ? scene->cell->hSize : Matrix3r::Zero();
-	using Clock     = std::chrono::steady_clock;
-	const auto ns   = [](Clock::time_point a, Clock::time_point b) { return Real(std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count()); };
-	const auto t0   = Clock::now();
-	const int threads = pendular::passThreads(ompThreads);
-	// The records belong to one scene, and only to the steps where nothing else reads the objects.
-	// Handed back before the gathering: what the objects get from the records is completed from the
-	// bodies as the records' last step saw them (store).
-	const bool recording = recordsAllowed(r);
-	if (!records.empty() && (!recording || known.recordScene != scene)) syncObjects(true, true);
-	known.recordScene       = scene;
-	loopThread              = std::this_thread::get_id();
-	const long colliderRuns = colliderRunCount();
-	if (liveRecords() > 0
-	    && (colliderRuns != known.reconciledRuns || scene->interactions.get() != known.reconciledContainer
-	        || scene->interactions->size() != known.reconciledSize))
-		reconcile();
-	known.reconciledRuns      = colliderRuns;
-	known.reconciledContainer = scene->interactions.get();
-	known.reconciledSize      = scene->interactions->size();
-	if (sortPending && sortDisorder > 0 && ownsStep(r)) {
-		const auto ts = Clock::now();
-		sortInteractions();
-		workValid = false;
-		sortTime += ns(ts, Clock::now());
-	}
-	sortPending = false;
-	threadForce.resize(threads);
-	threadTorque.resize(threads);
-	gather(threads); // also zeroes the force arrays after a step that ended before its flush
-	// The force container covers every body and its per-thread entries are summed (addMaxId, sync): the
-	// pass adds the forces of each thread's part of the bodies into its summed arrays (see ThreadSink).
-	const long bodies = long(particles.size());
+	cellHsize = scene->isPeriodic ? scene->cell->hSize : Matrix3r::Zero();
+}
+
+// The force container covers every body and its per-thread entries are summed (addMaxId, sync): the
+// pass adds the forces of each thread's part of the bodies into its summed arrays (see ThreadSink).
+pendular::SummedArrays PendularLoop::openContainer(int threads)
+{
+	const long bodies = long(state.snapshot.particles.size());
 	if (bodies > 0) {
 		scene->forces.addMaxId(Body::id_t(bodies - 1));
 		scene->forces.sync();
 	}
 	const pendular::SummedArrays summed = pendular::summedArrays(scene->forces, bodies);
-	directParts.assign(size_t(threads), DirectPart {});
-	const auto t1 = Clock::now();
+	state.forces.direct.assign(size_t(threads), pendular::DirectPart {});
+	return summed;
+}
 
+PendularLoop::PassPlan PendularLoop::planPass(const Resolved& r, bool recording, long colliderRuns, int threads, const pendular::SummedArrays& summed)
+{
 	// As InteractionLoop: with a collider that does not erase interactions itself, the potential
 	// interactions it did not see in this step are skipped.
 	removeUnseen = scene->interactions->iterColliderLastRun >= 0 && scene->interactions->iterColliderLastRun == scene->iter;
-	const auto&      interactions = *scene->interactions;
-	const long       size         = scene->interactions->size();
-	long             fused = 0, dispatchedCount = 0, apart = 0, recorded = 0, bounded = 0;
-	slots.resize(size);
-	toRecord.resize(threads);
-	toForget.resize(threads);
-	const bool skipApart = r.fused && !removeUnseen && !scene->isPeriodic;
-	known.forcesPending  = true; // until the flush has read and zeroed the force arrays
+	PassPlan plan { threads, long(scene->interactions->size()), 0, long(state.snapshot.particles.size()) };
+	plan.recording = recording;
+	plan.summed    = summed;
+	state.pairs.slots.resize(size_t(plan.size));
+	state.records.useThreads(threads);
+	plan.skipApart      = r.fused && !removeUnseen && !scene->isPeriodic;
+	state.forces.pending = true; // until the flush has read and zeroed the force arrays
 	// Between two runs of the collider and within one epoch of the bound on potential pairs' gaps
-	// (see gather), the container is the one of the last pass, and a potential pair whose bound exceeds
+	// (see Pairs), the container is the one of the last pass, and a potential pair whose bound exceeds
 	// what the bodies can move in the whole epoch is skipped at every step: the pass visits only the
-	// entries of `work` (built after the last full pass), in the same order at every step (the container's
-	// order on one thread, see shareWork on several), so that the forces are summed in the same order, and
-	// the skipped entries are counted as the full pass counts them.
-	// Anything else that changes the container drops the list: the Python paths through syncScene,
-	// sorting, another scene. Behind that, the first and last entries must be the interactions of the
-	// last pass (an erasure moves the last entry into its hole, an insertion appends: erasing and
-	// inserting one keeps the size, not the last entry).
-	const bool fast = skipFar && recording && skipApart && !known.fullCheck && workValid && known.workEpoch == known.epochCount
-	        && known.workColliderRuns == colliderRuns && known.workContainer == scene->interactions.get() && long(known.workSize) == size
-	        && (size == 0 || (slots[0].same(interactions[0]) && slots[size - 1].same(interactions[size - 1])));
-	long       disorder = 0;
-	const long m        = fast ? long(work.size()) : size;
-	// The parts of the bodies and of the list, and the borders, are those of this pass (shareWork made
-	// them for this list and these bodies; the pass does not change them). Then a pass on the list whose
-	// threads add their own bodies' forces into the container hands the borders over in its own parallel
-	// region (partsReady, see handOverBorders), if the whole team runs it.
-	// (workParts as partOf takes it: a thread that waits for another's hand-off relies on that thread's part
-	// holding its workBorders.)
-	const bool partsValid = fast && long(workParts.size()) == threads + 1 && workParts.front() == 0 && workParts.back() == m && long(borders.size()) == threads
-	        && long(workBorders.size()) == threads && long(bodyParts.size()) == threads + 1 && bodyParts.back() == bodies;
-	const bool partsReady = partsValid && summed.forces;
-	if (partsReady && long(handOffs.size()) != threads) handOffs = std::vector<HandOff>(size_t(threads));
-	const long handOffAt = partsReady ? ++handOffPass : 0;
+	// entries of the list (built after the last full pass), in the same order at every step (the
+	// container's order on one thread, see WorkPartition on several), so that the forces are summed in
+	// the same order, and the skipped entries are counted as the full pass counts them. Anything else
+	// that changes the container drops the list: the Python paths through syncScene, sorting, another
+	// scene (see Pairs::listValid).
+	plan.fast = skipFar && recording && plan.skipApart && !state.pairs.fullCheck && state.pairs.listValid(colliderRuns, *scene->interactions);
+	plan.m    = plan.fast ? long(state.pairs.work.size()) : plan.size;
+	// The parts of the bodies and of the list, and the borders, are those of this pass. Then a pass on the
+	// list whose threads add their own bodies' forces into the container hands the borders over in its own
+	// parallel region (partsReady, see ForceAccumulator::handOverBorders), if the whole team runs it.
+	plan.partsValid = plan.fast && state.partition.valid(plan.m, threads, plan.bodies);
+	plan.partsReady = plan.partsValid && summed.forces;
+	plan.handOffAt  = plan.partsReady ? state.partition.nextHandOff(threads) : 0;
 	// Shares fixed between two full passes, so that each thread sums the forces on its bodies in the same
-	// order at every step of an epoch. The list is shared by the parts of the bodies (shareWork, which
+	// order at every step of an epoch. The list is shared by the parts of the bodies (WorkPartition, which
 	// follows the threads' measured paces: two runs on several threads may differ by round-off, as YADE's
-	// collider already makes them on several threads by its parallel insertion); a full pass
-	// in interleaved chunks of the container: real and potential interactions are not spread evenly over
-	// it (one half per thread left one thread idle a third of the time).
-	// A full pass lists the entries that the passes of this epoch may have to visit (see buildWork) as it
-	// visits them, each thread those of its chunks (a list made after the pass read every slot again: 85 µs
-	// per full pass on the ci cell on one thread, 100 on two, where half the slots come from the other core).
-	// gather ends an epoch unless move < epochMove * rmin, the same product: each slot left out has
-	// gapBound >= 2 (epochMove rmin) > 2 epochDisplacement at every step of the epoch.
-	const bool listing   = !fast && skipFar && recording && skipApart;
-	const Real threshold = 2 * (epochMove * known.epochRmin);
-	if (listing) {
-		listed.resize(size_t(threads));
-		for (auto& list : listed)
-			list.clear();
-		chunkEnds.resize(size_t((size + passChunk - 1) / passChunk));
-	}
-	// teamComplete: each thread computed its part of the list (then the flush reads only parts and borders).
-	bool teamComplete = true;
-	// This pass's entries of busyTimes (see traceBusy), one per thread, written by each thread.
-	const size_t traceAt = busyTimes.size();
-	const bool   tracing = fast && traceBusy > 0;
-	if (tracing) busyTimes.resize(traceAt + size_t(threads), NaN);
-#ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) reduction(+ : fused, dispatchedCount, apart, recorded, bounded, disorder) reduction(&& : teamComplete)
-#endif
-	{
-		Counts c;
-		c.thread     = pendular::threadNumber();
-		teamComplete = pendular::teamSize() == threads;
-		if (summed.forces) {
-			const auto part              = pendular::partOf(bodyParts, bodies, c.thread, pendular::teamSize());
-			directParts[size_t(c.thread)] = DirectPart { summed.forces, summed.torques, part.first, part.second };
-		}
-		if (fast) {
-			const auto started = Clock::now();
-			// Each thread its part of the list (workParts): the entries whose first body is in its part of
-			// the bodies, which it gathered and will move.
-			const auto part = pendular::partOf(workParts, m, c.thread, pendular::teamSize());
-			const long end  = part.second;
-			// Every thread of the team takes this branch or none (the same team size). Each computes first its
-			// entries that reach other parts and says so (handOffs), then the rest of its part; then it adds
-			// what the others computed for the bodies of its part, as soon as they have said so. Behind a
-			// barrier instead, the second thread of the ci cell did the whole hand-over while the first waited
-			// (the part of the lower ids reaches the other, not the reverse): 8-13 µs per step on two threads.
-			const bool handing = partsReady && pendular::teamSize() == threads;
-			HandOff*   own     = handing ? &handOffs[c.thread] : nullptr;
-			const long handAt  = handing ? workBorders[size_t(c.thread)] : -1; // after the entries that reach other parts
-			if (handAt == part.first) own->pass.store(handOffAt, std::memory_order_release);
-			for (long k = part.first; k < end; ++k) {
-				// A third level for the list: its entries are not contiguous, so the hardware does not
-				// fetch the slots and container entries that the prefetches of visit() read.
-				if (k + 4 * prefetchAhead < end) {
-					__builtin_prefetch(&slots[work[k + 4 * prefetchAhead]]);
-					__builtin_prefetch(&interactions[work[k + 4 * prefetchAhead]]);
-				}
-				visit(work[k], k + prefetchAhead < end ? work[k + prefetchAhead] : -1, k + 2 * prefetchAhead < end ? work[k + 2 * prefetchAhead] : -1,
-				      r, skipApart, recording, c);
-				if (k + 1 == handAt) own->pass.store(handOffAt, std::memory_order_release);
-			}
-			// The pace counts the thread's own work, not its waits for the others.
-			auto busy = Clock::now() - started;
-			if (handing) {
-				for (int k = 0; k < threads; ++k)
-					if (k != c.thread && !borders[size_t(k)][size_t(c.thread)].empty())
-						pendular::waitFor(handOffs[k].pass, handOffAt);
-				const auto handing0 = Clock::now();
-				handOverBorders(c.thread, summed);
-				busy += Clock::now() - handing0;
-			}
-			const Real busyNs = Real(std::chrono::duration_cast<std::chrono::nanoseconds>(busy).count());
-			if (partsValid && pendular::teamSize() == threads && long(paceTime.size()) == threads) paceTime[size_t(c.thread)] += busyNs;
-			if (tracing) busyTimes[traceAt + size_t(c.thread)] = busyNs;
-		} else {
-			// The (id1, id2) of the entry before, in this thread's chunk: counts the entries out of order (see sortInteractions).
-			long     before    = -2;
-			uint64_t beforeKey = 0;
-#ifdef YADE_OPENMP
-#pragma omp for schedule(static, passChunk)
-#endif
-			for (long i = 0; i < size; ++i) {
-				visit(i, i + prefetchAhead < size ? i + prefetchAhead : -1, i + 2 * prefetchAhead < size ? i + 2 * prefetchAhead : -1, r, skipApart,
-				      recording, c);
-				const Slot&    slot = slots[i];
-				const uint64_t key  = slot.key();
-				if (i == before + 1 && key < beforeKey) ++disorder;
-				before    = i;
-				beforeKey = key;
-				if (listing) {
-					if (!listedOut(slot, threshold)) listed[size_t(c.thread)].push_back(i);
-					if ((i + 1) % passChunk == 0 || i + 1 == size) chunkEnds[size_t(i / passChunk)] = ChunkEnd { c.thread, long(listed[size_t(c.thread)].size()) };
-				}
-			}
-		}
-		fused += c.fused;
-		dispatchedCount += c.dispatched;
-		apart += c.apart;
-		recorded += c.recorded;
-		bounded += c.bounded;
-	}
-	// The skipped entries, counted as the full pass counts them (apart by the bound).
-	// The flush may read the arrays by parts and borders (see flushForces).
-	const bool parted = partsValid && teamComplete;
-	if (parted) ++paceSteps;
-	if (tracing) --traceBusy;
-	nSkipped = size - m;
-	fused += nSkipped;
-	apart += nSkipped;
-	bounded += nSkipped;
-	if (fast) {
-		++nFastPasses;
-		disorder = nDisorder; // the container's order has not changed
-	}
-	nDisorder            = disorder;
-	sortPending          = sortDisorder > 0 && Real(disorder) > sortDisorder * Real(size);
-	nFused               = fused;
-	nDispatched          = dispatchedCount;
-	nApart               = apart;
-	nRecorded            = recorded;
-	nBounded             = bounded;
-	known.seenDt         = scene->dt; // what the records' shearInc now follows from (recordShearInc)
-	known.seenRatcheting = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
-	settleRecords();
-	if (!fast) buildWork(listing, colliderRuns, threads);
-	known.stale   = liveRecords() > 0;
-	const auto t2 = Clock::now();
-	flushForces(threads, parted, summed.forces != nullptr, partsReady && teamComplete);
-	gatherTime += ns(t0, t1);
-	passTime += ns(t1, t2);
-	flushTime += ns(t2, Clock::now());
+	// collider already makes them on several threads by its parallel insertion); a full pass in
+	// interleaved chunks of the container: real and potential interactions are not spread evenly over it
+	// (one half per thread left one thread idle a third of the time).
+	// A full pass lists the entries that the passes of this epoch may have to visit (see Pairs::buildList)
+	// as it visits them, each thread those of its chunks (a list made after the pass would read every slot
+	// again, on several threads half of them from another core; docs/performance.md, "The list of a full
+	// pass made during the pass"). The gathering ends an epoch unless move < epochMove * rmin, the same
+	// product as the threshold: each slot left out has gapBound >= 2 (epochMove rmin) > 2
+	// epochDisplacement at every step of the epoch.
+	plan.listing   = !plan.fast && skipFar && recording && plan.skipApart;
+	plan.threshold = state.pairs.threshold();
+	if (plan.listing) state.pairs.startListing(threads, plan.size);
+	plan.trace = pendular::BusyTrace(busyTimes, traceBusy, plan.fast, threads);
+	return plan;
 }
 
-// One entry of the container; after it, its slot holds its ids whichever way it went. ahead1, ahead2:
-// the entries the pass visits prefetchAhead and 2 prefetchAhead after this one (-1: none).
-void PendularLoop::visit(long i, long ahead1, long ahead2, const Resolved& r, bool skipApart, bool recording, Counts& c)
+// After the pass: the attributes that count it, the records settled, the list and the parts for the
+// passes of the epoch after a full pass.
+void PendularLoop::finishPass(const PassPlan& plan, const Resolved& r, PassCounts counts, long colliderRuns)
 {
-	const auto& interactions = *scene->interactions;
-	// Two levels: the record or Interaction (unless a potential one seen before), then, once it is
-	// cached, the bodies of a record or the geometry and physics of a real interaction without one.
-	// Led by the slots alone (a slot that no longer matches its entry prefetches the wrong lines, which
-	// costs nothing but the prefetch; checking costs two more reads per entry).
-	if (ahead2 >= 0) {
-		const Slot& ahead = slots[ahead2];
-		if (ahead.recorded()) {
-			if (size_t(ahead.record) < records.size()) prefetchObject(&records[ahead.record]);
-		} else if (!ahead.potential())
-			prefetchObject(interactions[ahead2].get());
+	if (plan.partsValid && counts.teamComplete) ++state.partition.paceSteps;
+	if (plan.trace.on) --traceBusy;
+	// The skipped entries, counted as the full pass counts them (apart by the bound).
+	nSkipped = plan.size - plan.m;
+	counts.fused += nSkipped;
+	counts.apart += nSkipped;
+	counts.bounded += nSkipped;
+	if (plan.fast) {
+		++nFastPasses;
+		counts.disorder = nDisorder; // the container's order has not changed
 	}
-	if (ahead1 >= 0) {
-		const Slot& ahead = slots[ahead1];
-		if (ahead.recorded()) { // its bodies and their force sums (the slot has the ids; torques only with friction, not prefetched)
-			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
-				prefetchObject(&particles[ahead.id1]);
-				prefetchObject(&particles[ahead.id2]);
-				const DirectPart& direct = directParts[size_t(c.thread)];
-				__builtin_prefetch(direct.has(ahead.id1) ? &direct.forces[ahead.id1] : &threadForce[c.thread][ahead.id1], 1);
-				__builtin_prefetch(direct.has(ahead.id2) ? &direct.forces[ahead.id2] : &threadForce[c.thread][ahead.id2], 1);
-			}
-		} else if (ahead.record == Slot::none) {
-			const auto& J = interactions[ahead1];
-			if (J->geom) prefetchObject(static_cast<const ScGeom*>(J->geom.get()));
-			if (J->phys) prefetchObject(static_cast<const PendularPhys*>(J->phys.get()));
-		} else if (skipApart && !apartByBound(ahead)) { // a potential pair to check: its bodies
-			if (size_t(math::max(ahead.id1, ahead.id2)) < particles.size()) {
-				__builtin_prefetch(&particles[ahead.id1]);
-				__builtin_prefetch(&particles[ahead.id2]);
-			}
-		}
-	}
-	const shared_ptr<Interaction>& I    = interactions[i];
-	Slot&                          slot = slots[i];
-	// Another interaction than in the last step: new (reconcile has given an interaction that an erasure
-	// moved here the slot of its record).
-	if (!slot.same(I)) slot.record = Slot::none;
-	if (slot.same(I)) {
-		if (slot.recorded()) {
-			Record& rec = records[slot.record];
-			// The record's bodies (the body container may have shrunk: O.bodies.replace).
-			// bodiesKept: no body changed since the last pass, in which the record's were such spheres.
-			if (known.bodiesKept
-			    || (size_t(math::max(slot.id1, slot.id2)) < particles.size() && sphereHere(slot.id1) && sphereHere(slot.id2))) {
-				++c.fused;
-				++c.recorded;
-				if (!recordStep(rec, r, c.thread)) {
-					scene->interactions->requestErase(I);
-					toForget[c.thread].push_back(slot.record);
-					slot.record   = Slot::potentialPair;
-					slot.gapBound = -std::numeric_limits<float>::infinity();
-				}
-				return;
-			}
-			// A body is gone or has changed (material, shape, subdomain): the objects decide again.
-			store(rec, *I, previous); // its own objects again (made in this thread: the record is forgotten after the pass)
-			toForget[c.thread].push_back(slot.record);
-			slot.record = Slot::none;
-		} else if (skipApart && slot.potential()) {
-			// A potential interaction of two PendularMat spheres seen in an earlier step (same object, so
-			// the same ids; it became real only in this loop, which updates the slot). Apart by more than
-			// the bodies can have moved since its last check: nothing to read but the slot (see gather).
-			if (apartByBound(slot)) {
-				++c.fused;
-				++c.apart;
-				++c.bounded;
-				return;
-			}
-			// Else one distance check on the gathered data, without reading the Interaction.
-			const Near q1 = nearOf(particles[slot.id1], scene->subdomain, known.films);
-			const Near q2 = nearOf(particles[slot.id2], scene->subdomain, known.films);
-			if (q1.radius != 0 && q2.radius != 0 && (q1.radius > 0 || q2.radius > 0)) {
-				const Real sumR = math::abs(q1.radius) + math::abs(q2.radius);
-				const Real d2   = (q2.pos - q1.pos).squaredNorm();
-				if (d2 > sumR * sumR) {
-					slot.gapBound = roundedDown(math::sqrt(d2) - sumR - 2 * known.epochDisplacement);
-					++c.fused;
-					++c.apart;
-					return;
-				}
-			}
-		}
-	}
-	step(I, r, c);
-	// Assigned only for another interaction: a weak_ptr copy is two atomic operations on the control
-	// block, one more cache line per interaction and step.
-	if (!slot.same(I)) slot.interaction = I;
-	slot.id1      = I->getId1();
-	slot.id2      = I->getId2();
-	slot.record   = I->isReal() ? Slot::none : Slot::potentialPair;
-	slot.gapBound = -std::numeric_limits<float>::infinity();
-	if (recording && !slot.potential() && recordable(*I, r)) toRecord[c.thread].push_back(i);
+	nDisorder   = counts.disorder;
+	sortPending = sortDisorder > 0 && Real(counts.disorder) > sortDisorder * Real(plan.size);
+	nFused      = counts.fused;
+	nDispatched = counts.dispatched;
+	nApart      = counts.apart;
+	nRecorded   = counts.recorded;
+	nBounded    = counts.bounded;
+	pendular::RecordStore& records = state.records;
+	records.seenDt                 = scene->dt; // what the records' shearInc now follows from (RecordStore::shearIncOf)
+	records.seenRatcheting         = r.ig2 ? r.ig2->avoidGranularRatcheting : true;
+	records.settle(*scene->interactions, state.pairs.slots);
+	nWithObjects = long(records.withObjects.size());
+	nInvariants  = records.liveInvariants();
+	if (!plan.fast && state.pairs.buildList(plan.listing, colliderRuns, *scene->interactions))
+		state.partition.share(state.pairs.work, state.pairs.slots, plan.bodies, plan.threads, threadPace);
+	records.stale = records.live() > 0;
 }
+
 
 // How many times the scene's colliders have run (InsertionSortCollider::numAction counts the steps it
 // is activated in): the only engine that recordsAllowed lets change the container during a run.
@@ -661,157 +254,6 @@ long PendularLoop::colliderRunCount() const
 	for (const auto& e : scene->engines)
 		if (const auto* collider = dynamic_cast<const InsertionSortCollider*>(e.get())) runs += collider->numAction;
 	return runs;
-}
-
-// After a full pass: the entries that a pass of this epoch may have to visit, every one but the
-// potential pairs whose bound on the gap exceeds twice the largest move of the epoch (epochMove of the
-// smallest radius; the epoch ends before a body moves that far), which the full pass would skip at
-// every step of the epoch: the threads' lists of the pass, chunk by chunk in the container's order.
-// use = false: no list (the next pass is a full one).
-void PendularLoop::buildWork(bool use, long colliderRuns, int threads)
-{
-	work.clear();
-	workValid = use;
-	if (!use) return;
-	const long        size = long(scene->interactions->size());
-	std::vector<long> from(listed.size(), 0);
-	for (const ChunkEnd& chunk : chunkEnds) {
-		const auto& list = listed[size_t(chunk.thread)];
-		work.insert(work.end(), list.begin() + from[size_t(chunk.thread)], list.begin() + chunk.end);
-		from[size_t(chunk.thread)] = chunk.end;
-	}
-	shareWork(threads);
-	known.workEpoch        = known.epochCount;
-	known.workColliderRuns = colliderRuns;
-	known.workContainer    = scene->interactions.get();
-	known.workSize         = size_t(size);
-}
-
-// The parts of the bodies and of the list of entries (bodyParts, workParts) for `threads` threads. Each
-// thread computes the listed entries whose first body is in its part of the bodies, and gathers, hands
-// over the forces of and moves (PendularIntegrator) the bodies of its part: a body's data then stays in
-// the cache of one core, except for the interactions that cross a part's border (13 % of the real ones
-// in the ci cell, whose ids grow with height). Without it, every step moved most bodies' lines from the
-// core that wrote them to the other one and back: on two threads each thread did its share of the pass
-// and of the gathering 20-50 % slower than one thread alone. The bodies are cut where the estimated cost
-// of the bodies and their entries is shared in inverse proportion to the threads' paces (threadPace). Each
-// part of the list holds first the entries that reach another part, then the others, each group in the
-// container's order: the same order at every step of the epoch, so that each thread sums the forces on a
-// body in the same order (on one thread, the container's order: InteractionLoop's sums).
-void PendularLoop::shareWork(int threads)
-{
-	const long n = long(particles.size());
-	if (threads < 2 || n == 0) {
-		bodyParts.clear();
-		workParts.clear();
-		workBorders.clear();
-		borders.clear();
-		sharedBodies.clear();
-		threadPace.clear();
-		partCost.clear();
-		paceTime.clear();
-		paceSteps = 0;
-		return;
-	}
-	// Estimated cost of a body and its entries, in steps of a record: a body's gathering, hand-over and
-	// move together take about as long as a record's step (ci cell, 50 and 45 ns on one thread), a
-	// potential pair a distance check, an interaction through the dispatchers more than a record.
-	const auto valid = [n](Body::id_t id) { return id >= 0 && id < n; };
-	shareCost.assign(size_t(n), 1.f);
-	float total = float(n);
-	for (const long i : work) {
-		const Slot& slot = slots[i];
-		const float c    = slot.recorded() ? 1.f : slot.potential() ? 0.25f : 2.f;
-		if (valid(slot.id1)) shareCost[size_t(slot.id1)] += c;
-		total += c;
-	}
-	// Each thread's pace, from the passes on the list since the last share (see threadPace), smoothed (half the
-	// last one's): its share of the estimated cost is inversely proportional to it. With the estimate alone,
-	// the second thread of the ci cell finished its entries 4-5 µs per step later than the first on average
-	// (its bodies all move and have more bridges than the first part's fixed floor; with the paces -0.3 to
-	// -0.9 µs), and in a two-vCPU VM's slow mode one core runs its part 10-15 % slower than the other for seconds.
-	if (long(threadPace.size()) != threads) threadPace.assign(size_t(threads), 1);
-	if (paceSteps >= minPaceSteps && long(partCost.size()) == threads && long(paceTime.size()) == threads) {
-		std::vector<double> perCost(static_cast<size_t>(threads));
-		double              mean     = 0;
-		bool                measured = true;
-		for (int k = 0; k < threads; ++k) {
-			measured = measured && partCost[size_t(k)] > 0 && paceTime[size_t(k)] > 0;
-			perCost[size_t(k)] = paceTime[size_t(k)] / double(partCost[size_t(k)]);
-			mean += perCost[size_t(k)] / threads;
-		}
-		for (int k = 0; measured && k < threads; ++k)
-			threadPace[size_t(k)] = math::min(maxPace, math::max(1 / maxPace, 0.5 * threadPace[size_t(k)] + 0.5 * Real(perCost[size_t(k)] / mean)));
-	}
-	paceTime.assign(size_t(threads), 0);
-	paceSteps = 0;
-	Real shares = 0;
-	for (const Real p : threadPace)
-		shares += 1 / p;
-	bodyParts.assign(size_t(threads) + 1, n);
-	bodyParts[0] = 0;
-	float sum   = 0;
-	Real  below = 1 / threadPace[0]; // the shares of the parts before bound t
-	int   t     = 1;
-	for (long id = 0; id < n && t < threads; ++id) {
-		sum += shareCost[size_t(id)];
-		while (t < threads && sum >= float(total * below / shares)) {
-			bodyParts[size_t(t)] = id + 1;
-			below += 1 / threadPace[size_t(t++)];
-		}
-	}
-	partCost.assign(size_t(threads), 0);
-	for (int k = 0; k < threads; ++k)
-		for (long id = bodyParts[size_t(k)]; id < bodyParts[size_t(k) + 1]; ++id)
-			partCost[size_t(k)] += shareCost[size_t(id)];
-	// The part of each body, looked up once per entry and body below.
-	bodyPart.resize(size_t(n));
-	for (int k = 0; k < threads; ++k)
-		std::fill(bodyPart.begin() + bodyParts[size_t(k)], bodyPart.begin() + bodyParts[size_t(k) + 1], k);
-	const auto partOfBody = [&](Body::id_t id) { return id < 0 ? 0 : id >= n ? threads - 1 : bodyPart[size_t(id)]; };
-	// The list, stably by the part of each entry's first body, each part's entries that reach another part
-	// first (the pass hands them over as soon as they are computed, see handOffs); the bodies of other parts
-	// that each part's entries reach (borders, see flushForces), marked per body (one bit per part), so that
-	// the borders come out in ascending order without sorting.
-	const size_t words   = (size_t(threads) + 63) / 64;
-	const auto   reaches = [&](const Slot& slot, int k) {
-                return (valid(slot.id1) && bodyPart[size_t(slot.id1)] != k) || (valid(slot.id2) && bodyPart[size_t(slot.id2)] != k);
-	};
-	workParts.assign(size_t(threads) + 1, 0);
-	workBorders.assign(size_t(threads), 0);
-	for (const long i : work) {
-		const int k = partOfBody(slots[i].id1);
-		++workParts[size_t(k) + 1];
-		workBorders[size_t(k)] += reaches(slots[i], k);
-	}
-	for (int k = 0; k < threads; ++k)
-		workParts[size_t(k) + 1] += workParts[size_t(k)];
-	std::vector<long> next(workParts.begin(), workParts.end() - 1), inner(next.size()), shared(work.size());
-	for (int k = 0; k < threads; ++k)
-		inner[size_t(k)] = workBorders[size_t(k)] += workParts[size_t(k)];
-	reachedBy.assign(size_t(n) * words, 0);
-	for (const long i : work) {
-		const Slot& slot   = slots[i];
-		const int   k      = partOfBody(slot.id1);
-		const bool  border = reaches(slot, k);
-		shared[size_t(border ? next[size_t(k)]++ : inner[size_t(k)]++)] = i;
-		for (const Body::id_t id : { slot.id1, slot.id2 })
-			if (valid(id) && bodyPart[size_t(id)] != k) reachedBy[size_t(id) * words + size_t(k) / 64] |= uint64_t(1) << (k % 64);
-	}
-	work.swap(shared);
-	borders.resize(size_t(threads));
-	for (auto& byPart : borders) {
-		byPart.resize(size_t(threads));
-		for (auto& ids : byPart)
-			ids.clear();
-	}
-	sharedBodies.assign(size_t(n), 0);
-	for (long id = 0; id < n; ++id)
-		for (size_t w = 0; w < words; ++w)
-			for (uint64_t mask = reachedBy[size_t(id) * words + w]; mask != 0; mask &= mask - 1) {
-				borders[w * 64 + size_t(__builtin_ctzll(mask))][size_t(bodyPart[size_t(id)])].push_back(Body::id_t(id));
-				sharedBodies[size_t(id)] = 1;
-			}
 }
 
 // Which engines may run beside recorded interactions: those known not to read or change the
@@ -832,7 +274,7 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	MPI_Finalized(&finalized);
 	if (initialized && !finalized) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
 	if (ranks > 1) return false;
-	// The engines, by class name, once per engine list (the names' strings cost 1 µs per step on the ci cell).
+	// The engines, by class name, once per engine list (getClassName makes a string per engine and call).
 	if (!pendular::sameEngines(ownedEngines, scene->engines)) {
 		static const std::set<std::string> known { "ForceResetter", "PendularForceResetter", "InsertionSortCollider", "PendularLoop", "PendularCheck",
 			                                   "NewtonIntegrator", "PendularIntegrator", "PyRunner", "RotationEngine", "PendularRotationEngine" };
@@ -847,419 +289,37 @@ bool PendularLoop::ownsStep(const Resolved&) const
 	return enginesOwned;
 }
 
-// A real sphere-sphere interaction of the fused pass whose state fits a Record: a fixed-volume
-// inviscid bridge (or none) on ScGeom, with valid contact parameters.
-bool PendularLoop::recordable(const Interaction& I, const Resolved& r) const
-{
-	if (!r.fused || !sphereHere(I.getId1()) || !sphereHere(I.getId2())) return false;
-	if (!I.geom || !I.phys || typeid(*I.geom) != typeid(ScGeom) || typeid(*I.phys) != typeid(PendularPhys)) return false;
-	const auto& phys = static_cast<const PendularPhys&>(*I.phys);
-	return !phys.film && !phys.viscous && phys.kn > 0;
-}
 
-void PendularLoop::load(Record& rec, const shared_ptr<Interaction>& I)
-{
-	const auto& geom     = static_cast<const ScGeom&>(*I->geom);
-	const auto& phys     = static_cast<const PendularPhys&>(*I->phys);
-	rec.id1              = I->getId1();
-	rec.id2              = I->getId2();
-	rec.invariants       = invariantsOf(phys);
-	rec.active           = phys.active;
-	rec.isActive         = I->isActive;
-	rec.normal           = geom.normal;
-	rec.shearInc         = geom.shearInc;
-	rec.penetrationDepth = geom.penetrationDepth;
-	rec.normalForce      = phys.normalForce;
-	rec.shearForce       = phys.shearForce;
-	rec.Fcap             = phys.Fcap;
-}
-
-// The entry of `invariants` for the bridge and contact parameters of `phys`. PendularPhys makes its
-// bridge from its own members (Ip2, and again when loaded), so physics with the same members, bit for
-// bit, have the same bridge: they share an entry (the bridge is checked as well, cheaply).
-std::string PendularLoop::invariantsKey(const PendularPhys& phys)
-{
-	// Every attribute but those of the record (active, Fcap, normalForce, shearForce): the entry's
-	// prototype stands for the physics of all its records when their objects are made again (store).
-	const Real reals[] = { phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.R1, phys.R2, phys.gamma, phys.theta1, phys.theta2,
-		               phys.linearFmax, phys.linearKc, phys.bridge.rupture, phys.bridge.force0, phys.bridge.force_rupture, phys.R, phys.sCrit,
-		               phys.force0, phys.eta, phys.viscousSmin, phys.Fvisc, phys.viscousShear[0], phys.viscousShear[1], phys.viscousShear[2],
-		               phys.sRupture, phys.transfer1, phys.VbMin, phys.VbMax };
-	const int  ints[]  = { phys.modelIndex, phys.ruptureIndex, phys.calibrateIndex, int(phys.bridge.m.index()), phys.extrapolate, phys.wet, phys.forceInContact,
-		               phys.film, phys.filmFormation, phys.pending, phys.viscousIndex, phys.dynamicRupture, phys.swapped, phys.transferIndex };
-	std::string key(reinterpret_cast<const char*>(reals), sizeof(reals));
-	key.append(reinterpret_cast<const char*>(ints), sizeof(ints));
-	return key;
-}
-
-int PendularLoop::invariantsOf(const PendularPhys& phys)
-{
-	const std::string key   = invariantsKey(phys);
-	const auto        found = invariantsIndex.find(key);
-	if (found != invariantsIndex.end()) {
-		++invariants[found->second].users;
-		return found->second;
-	}
-	const Invariants entry { phys.bridge, phys.kn, phys.cn, phys.ks, phys.cs, phys.tangensOfFrictionAngle, phys.Vb, phys.wet, phys.forceInContact,
-		                 shared_ptr<const PendularPhys>(new PendularPhys(phys)), 1 };
-	int index;
-	if (freeInvariants.empty()) {
-		index = int(invariants.size());
-		invariants.push_back(entry);
-	} else {
-		index = freeInvariants.back();
-		freeInvariants.pop_back();
-		invariants[index] = entry;
-	}
-	return invariantsIndex[key] = index;
-}
-
-void PendularLoop::release(int index)
-{
-	Invariants& entry = invariants[index];
-	if (--entry.users > 0) return;
-	invariantsIndex.erase(invariantsKey(*entry.prototype)); // a copy of the physics it was made from: the same key
-	entry.prototype.reset();
-	freeInvariants.push_back(index);
-}
-
-void PendularLoop::forget(int index)
-{
-	release(records[index].invariants);
-	recordInteractions[index].reset();
-	freeRecords.push_back(index);
-}
-
-// What a step changes: the geometry, the forces and whether the bridge exists. The contact point and
-// the radii, which the record does not keep, follow from the bodies as gathered for the record's last
-// step (the particles, not gathered again before the objects are brought up to date), by the
-// arithmetic of sphereGeometry. An interaction that holds the placeholders gets a new ScGeom (all its
-// attributes are the record's or follow from the bodies; the axes of ScGeom::rotate are computed
-// before any use) and a copy of its invariants' prototype physics.
-bool PendularLoop::store(const Record& rec, Interaction& I, const std::vector<Particle>& seen) const
-{
-	if (!I.geom || !I.phys) return false; // reset by the law in this step
-	const bool make = holdsPlaceholders(I);
-	if (make) {
-		I.geom = shared_ptr<IGeom>(new ScGeom());
-		I.phys = shared_ptr<IPhys>(new PendularPhys(*invariants[rec.invariants].prototype));
-	}
-	auto& geom            = static_cast<ScGeom&>(*I.geom);
-	auto& phys            = static_cast<PendularPhys&>(*I.phys);
-	geom.normal           = rec.normal;
-	geom.shearInc         = recordShearInc(rec, seen);
-	geom.penetrationDepth = rec.penetrationDepth;
-	if (size_t(math::max(rec.id1, rec.id2)) < seen.size()) {
-		const Particle& p1 = seen[rec.id1];
-		geom.contactPoint  = contactPointOf(p1, rec.normal, rec.penetrationDepth);
-		geom.radius1       = p1.radius;
-		geom.radius2       = seen[rec.id2].radius;
-	} else if (make) { // a body that is gone: nothing to complete the new object from
-		geom.contactPoint = Vector3r::Constant(NaN);
-		geom.radius1 = geom.radius2 = NaN;
-	}
-	phys.normalForce = rec.normalForce;
-	phys.shearForce  = rec.shearForce;
-	phys.Fcap        = rec.Fcap;
-	phys.active      = rec.active;
-	return make;
-}
-
-namespace {
-	// A record seen as the ScGeom and PendularPhys that sphereGeometry and the law read and write: the
-	// members of the record by reference, those it does not keep as values of this step, the
-	// invariants shared.
-	struct RecordGeom {
-		Vector3r& normal;
-		Vector3r& shearInc;
-		Real&     penetrationDepth;
-		Vector3r  contactPoint;
-		Real      radius1, radius2;
-	};
-	struct RecordPhys {
-		Vector3r&                normalForce;
-		Vector3r&                shearForce;
-		Real&                    Fcap;
-		bool&                    active;
-		const capillary::Bridge& bridge;
-		const Real &             kn, &cn, &ks, &cs, &tangensOfFrictionAngle, &Vb;
-		const bool &             wet, &forceInContact;
-	};
-} // namespace
-
-// Inlined into visit: one call per bridge-step saved (the pass is bound by its instructions, not memory).
-__attribute__((always_inline)) inline bool PendularLoop::recordStep(Record& rec, const Resolved& r, int thread)
-{
-	const Particle& p1     = particles[rec.id1];
-	const Particle& p2     = particles[rec.id2];
-	Vector3r        normal = p2.pos - p1.pos;
-	const Real      norm   = normal.norm();
-	normal /= norm;
-	const Vector3r    zero = Vector3r::Zero();
-	const Invariants& inv  = invariants[rec.invariants];
-	RecordGeom        geom { rec.normal, rec.shearInc, rec.penetrationDepth, zero, 0, 0 };
-	RecordPhys        phys { rec.normalForce, rec.shearForce, rec.Fcap, rec.active, inv.bridge, inv.kn, inv.cn, inv.ks, inv.cs, inv.tangensOfFrictionAngle,
-                      inv.Vb, inv.wet, inv.forceInContact };
-	const Real        depth = p1.radius + p2.radius - norm;
-	// Separating: the shearInc of the last step in contact, which the objects keep while separated.
-	if (depth < 0 && rec.penetrationDepth >= 0) rec.shearInc = recordShearInc(rec, previous);
-	const Rotation rotation = sphereGeometry(geom, p1, p2, normal, depth, zero, zero, false, r, true, inv.tangensOfFrictionAngle > 0);
-	return applyLaw(rec.id1, rec.id2, rec.isActive, geom, phys, r, zero, zero, rotation, thread);
-}
-
-// After the pass, in one thread: frees the records of the interactions reset or handed back to the
-// objects, records the interactions that qualified (their objects replaced by the placeholders unless
-// something else holds them: Python) and drops the objects made since the last pass (dropObjects).
-void PendularLoop::settleRecords()
-{
-	for (auto& list : toForget) {
-		for (const int index : list)
-			forget(index);
-		list.clear();
-	}
-	const auto& interactions = *scene->interactions;
-	for (auto& list : toRecord) {
-		for (const long i : list) {
-			int index;
-			if (freeRecords.empty()) {
-				index = int(records.size());
-				records.emplace_back();
-				recordInteractions.emplace_back();
-			} else {
-				index = freeRecords.back();
-				freeRecords.pop_back();
-			}
-			const shared_ptr<Interaction>& I = interactions[i];
-			load(records[index], I);
-			recordInteractions[index] = I;
-			slots[i].record           = index;
-			withObjects.push_back(index);
-		}
-		list.clear();
-	}
-	dropObjects();
-}
-
-void PendularLoop::dropObjects()
-{
-	size_t kept = 0;
-	for (const int index : withObjects) {
-		const auto& I = recordInteractions[index];
-		if (!I || !I->geom || holdsPlaceholders(*I)) continue; // forgotten, reset, or listed twice
-		// An object that Python assigned has a control block of its own, which holds the Python object
-		// (boost::python's deleter): Python may hold it though the count is 1.
-		const bool fromPython = boost::get_deleter<boost::python::converter::shared_ptr_deleter>(I->geom)
-		        || boost::get_deleter<boost::python::converter::shared_ptr_deleter>(I->phys);
-		if (!fromPython && I->geom.use_count() == 1 && I->phys.use_count() == 1) {
-			I->geom            = placeholderGeom();
-			I->phys            = placeholderPhys();
-			known.placeholders = true;
-		} else
-			withObjects[kept++] = index; // held by Python: written by the next sync
-	}
-	withObjects.resize(kept);
-	nWithObjects = long(kept);
-	nInvariants  = long(invariants.size()) - long(freeInvariants.size());
-}
-
-// The collider erases the potential interactions whose bounding boxes parted (an erasure moves the last
-// entry of the container into the hole) and appends new ones: each recorded interaction is found at its
-// place in the container (Interaction::linIx), where its slot now is. One that is no longer in the
-// container (none should be: the collider erases only potential interactions, the Python paths that erase
-// drop the records first) goes back to its objects.
-void PendularLoop::reconcile()
-{
-	auto&       container = *scene->interactions;
-	const long  size      = long(container.size());
-	slots.resize(size_t(size));
-	const size_t n = records.size();
-	for (size_t index = 0; index < n; ++index) {
-		// The Interaction is read for its place only: a miss per record, overlapped by the prefetch.
-		if (index + prefetchAhead < n && recordInteractions[index + prefetchAhead]) __builtin_prefetch(recordInteractions[index + prefetchAhead].get());
-		const shared_ptr<Interaction>& I = recordInteractions[index];
-		if (!I) continue;
-		const long at = I->linIx;
-		if (at >= 0 && at < size && container[at] == I) {
-			Slot& slot = slots[at];
-			// Still in its slot (most are after a run of the collider): rewriting it would only count the
-			// weak reference down and up again.
-			if (slot.record == int(index) && slot.same(I) && slot.id1 == records[index].id1 && slot.id2 == records[index].id2) continue;
-			slot             = Slot {};
-			slot.interaction = I;
-			slot.id1         = records[index].id1;
-			slot.id2         = records[index].id2;
-			slot.record      = int(index);
-			continue;
-		}
-		store(records[index], *I);
-		forget(int(index));
-	}
-}
-
-// Sorts YADE's interaction container by (id1, id2), with the slots, and the records in the new
-// order. The collider appends new interactions and an erasure moves the last entry into the hole,
-// so the container drifts out of any order and the pass reads the bodies, slots and records of
-// consecutive entries from scattered places; body ids of a packing built layer by layer are close
-// in space, so in id order a pair's bodies and those of its neighbours in the container share cache
-// lines and the records are read in their order in memory. The container's order is only the order
-// of the loop (and of the force sums); InteractionContainer finds an interaction through its bodies,
-// and linIx is its back-reference.
+// Sorts the container, its slots and the records by (id1, id2) (see LoopSort.hpp); the list of entries
+// no longer holds.
 void PendularLoop::sortInteractions()
 {
-	auto&        container = *scene->interactions;
-	const size_t n         = container.size();
-	slots.resize(n);
-	std::vector<std::pair<uint64_t, size_t>> order(n); // key, entry before the sort
-	for (size_t i = 0; i < n; ++i) {
-		const auto& I = container[i];
-		if (!slots[i].same(I)) { // new since the last pass (reconcile has placed the records), the pass decides
-			slots[i]             = Slot {};
-			slots[i].interaction = I;
-			slots[i].id1         = I->getId1();
-			slots[i].id2         = I->getId2();
-		}
-		order[i] = { slots[i].key(), i };
-	}
-	sortByKey(order, uint64_t(scene->bodies->size()));
-	std::vector<shared_ptr<Interaction>> sorted(n);
-	std::vector<Slot>                    sortedSlots(n);
-	for (size_t k = 0; k < n; ++k) {
-		sorted[k]      = std::move(container[order[k].second]);
-		sortedSlots[k] = std::move(slots[order[k].second]);
-	}
-	for (size_t k = 0; k < n; ++k) {
-		// Every Interaction gets its new place: a miss each, overlapped by the prefetch.
-		if (k + prefetchAhead < n) __builtin_prefetch(sorted[k + prefetchAhead].get(), 1);
-		container[k]        = std::move(sorted[k]);
-		container[k]->linIx = int(k);
-	}
-	slots.swap(sortedSlots);
+	const auto started = Clock::now();
+	pendular::sortContainer(*scene->interactions, state.pairs.slots, uint64_t(scene->bodies->size()));
 	++nSorts;
-	if (records.empty()) return;
-	std::vector<Record>                  ordered;
-	std::vector<shared_ptr<Interaction>> orderedInteractions;
-	ordered.reserve(records.capacity()); // room for the next steps' new records without moving them all again
-	orderedInteractions.reserve(records.capacity());
-	std::vector<bool> placed(records.size(), false);
-	for (size_t k = 0; k < n; ++k) {
-		Slot& slot = slots[k];
-		if (!slot.recorded()) continue;
-		placed[slot.record] = true;
-		ordered.push_back(records[slot.record]);
-		orderedInteractions.push_back(std::move(recordInteractions[slot.record]));
-		slot.record = int(ordered.size()) - 1;
-	}
-	// A record whose interaction is no longer in the container (reconcile has handed them back) goes
-	// back to its objects.
-	for (size_t index = 0; index < records.size(); ++index)
-		if (!placed[index] && recordInteractions[index]) {
-			store(records[index], *recordInteractions[index]);
-			release(records[index].invariants);
-		}
-	records.swap(ordered);
-	recordInteractions.swap(orderedInteractions);
-	freeRecords.clear();
-	withObjects.clear();
-	for (size_t index = 0; index < records.size(); ++index) {
-		if (index + prefetchAhead < records.size()) __builtin_prefetch(recordInteractions[index + prefetchAhead].get());
-		if (!holdsPlaceholders(*recordInteractions[index])) withObjects.push_back(int(index));
-	}
+	state.records.reorder(state.pairs.slots, state.snapshot.particles);
+	state.pairs.workValid = false;
+	sortTime += pendular::nanoseconds(started, Clock::now());
 }
 
 void PendularLoop::syncObjects(bool drop, bool all)
 {
-	if ((all || drop) && (known.stale || known.placeholders)) { // else nothing to write (a loop of Python calls asks at every call)
-		for (size_t index = 0; index < records.size(); ++index) {
-			const auto& I = recordInteractions[index];
-			if (I && (known.stale || holdsPlaceholders(*I)) && store(records[index], *I)) withObjects.push_back(int(index));
-		}
-		known.placeholders = false;
-	} else if (!(all || drop) && known.stale)
-		for (const int index : withObjects)
-			if (recordInteractions[index]) store(records[index], *recordInteractions[index]);
-	known.stale = false;
+	state.records.sync(drop, all, state.pairs.slots, state.snapshot.particles);
 	if (!drop) return;
-	workValid = false;
-	records.clear();
-	recordInteractions.clear();
-	invariants.clear();
-	invariantsIndex.clear();
-	freeRecords.clear();
-	freeInvariants.clear();
-	withObjects.clear();
-	nWithObjects = 0;
-	nInvariants  = 0;
-	for (auto& slot : slots)
-		if (slot.recorded()) slot.record = Slot::none;
+	state.pairs.workValid = false;
+	nWithObjects          = 0;
+	nInvariants           = 0;
 }
 
 PendularLoop::~PendularLoop() { syncObjects(true, true); }
 
-namespace {
-	template <class T> long capacityBytes(const std::vector<T>& v) { return long(v.capacity() * sizeof(T)); }
-	template <class T> long capacityBytes(const std::vector<std::vector<T>>& v)
-	{
-		long bytes = long(v.capacity() * sizeof(std::vector<T>));
-		for (const auto& inner : v)
-			bytes += capacityBytes(inner);
-		return bytes;
-	}
-	template <class V> void freeVector(V& v) { V().swap(v); }
-} // namespace
+long PendularLoop::heldBytes() const { return state.heldBytes() + pendular::capacityBytes(threadPace); }
 
-// Every array the loop holds for its scene, the one list heldBytes and freeArrays go through.
-template <class Loop, class Visit> void PendularLoop::forEachArray(Loop& loop, Visit&& visit)
+// As a new loop (see SceneState); threadPace, the partition's measure, is a Python attribute.
+void PendularLoop::releaseState()
 {
-	visit(loop.slots);
-	visit(loop.particles);
-	visit(loop.previous);
-	visit(loop.epoch);
-	visit(loop.sharedBodies);
-	visit(loop.work);
-	visit(loop.bodyParts);
-	visit(loop.workParts);
-	visit(loop.workBorders);
-	visit(loop.handOffs);
-	visit(loop.borders);
-	visit(loop.listed);
-	visit(loop.chunkEnds);
-	visit(loop.shareCost);
-	visit(loop.bodyPart);
-	visit(loop.reachedBy);
-	visit(loop.threadPace);
-	visit(loop.partCost);
-	visit(loop.paceTime);
-	visit(loop.threadForce);
-	visit(loop.threadTorque);
-	visit(loop.directParts);
-	visit(loop.records);
-	visit(loop.recordInteractions);
-	visit(loop.invariants);
-	visit(loop.freeRecords);
-	visit(loop.freeInvariants);
-	visit(loop.withObjects);
-	visit(loop.toRecord);
-	visit(loop.toForget);
-	visit(loop.bodyPointers.states);
-	visit(loop.bodyPointers.bounds);
-	visit(loop.bodyPointers.parts);
-}
-
-long PendularLoop::heldBytes() const
-{
-	long bytes = 0;
-	forEachArray(*this, [&bytes](const auto& v) { bytes += capacityBytes(v); });
-	return bytes;
-}
-
-void PendularLoop::freeArrays()
-{
-	forEachArray(*this, [](auto& v) { freeVector(v); });
-	invariantsIndex = {};
-	// As a new loop: the gathering starts an epoch (epoch is empty), the pass visits every entry.
-	known              = Known {};
-	workValid          = false;
-	bodyPointers.scene = nullptr;
+	state      = SceneState {};
+	threadPace = {};
 }
 
 void PendularLoop::releaseScene(Scene* scene)
@@ -1269,7 +329,7 @@ void PendularLoop::releaseScene(Scene* scene)
 		throw std::runtime_error("PendularLoop.release while the simulation runs (O.run()): call O.pause() or O.wait() first");
 	syncScene(scene, true, true); // the records into the objects
 	for (const auto& e : scene->engines)
-		if (auto* loop = dynamic_cast<PendularLoop*>(e.get())) loop->freeArrays();
+		if (auto* loop = dynamic_cast<PendularLoop*>(e.get())) loop->releaseState();
 }
 
 void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
@@ -1278,23 +338,15 @@ void PendularLoop::objectsOf(const shared_ptr<Interaction>& I)
 	const auto& scene = Omega::instance().getScene();
 	for (const auto& e : scene->engines) {
 		auto* loop = dynamic_cast<PendularLoop*>(e.get());
-		if (!loop || loop->liveRecords() == 0) continue;
+		if (!loop || loop->state.records.live() == 0) continue;
 		// While it runs, the loop makes and drops the objects of its records (also those of this one).
 		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread)
 			throw std::runtime_error("Interaction.geom/phys while the simulation runs (O.run()): PendularLoop makes the objects of the "
 			                         "interactions it computes from its own records between steps; call O.pause() or O.wait() first");
-		if (!I->geom || !holdsPlaceholders(*I)) return;
-		// Its slot, unless the collider has moved it since the last pass (then a search).
-		long       index = -1;
-		const long at    = I->linIx;
-		if (at >= 0 && size_t(at) < loop->slots.size() && loop->slots[at].same(I) && loop->slots[at].recorded()) index = loop->slots[at].record;
-		for (size_t k = 0; index < 0 && k < loop->records.size(); ++k)
-			if (loop->recordInteractions[k] == I) index = long(k);
-		if (index < 0 || loop->recordInteractions[index] != I) continue;
-		if (loop->store(loop->records[index], *I)) loop->withObjects.push_back(int(index));
-		return;
+		if (!I->geom || !pendular::holdsPlaceholders(*I)) return;
+		if (loop->state.records.makeObjects(I, loop->state.pairs.slots, loop->state.snapshot.particles)) return;
 	}
-	if (!I->geom || !holdsPlaceholders(*I)) return; // no records: its own objects
+	if (!I->geom || !pendular::holdsPlaceholders(*I)) return; // no records: its own objects
 	throw std::runtime_error("Interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2())
 	                         + " holds PendularLoop's placeholders, but no PendularLoop of the current scene has its record");
 }
@@ -1307,8 +359,8 @@ void PendularLoop::syncScene(Scene* scene, bool drop, bool all)
 		if (!loop) continue;
 		// Whatever may have changed the container (drop) ends the list of entries to visit, also
 		// without records and from another thread (an atomic flag).
-		if (drop) loop->workValid = false;
-		if (loop->liveRecords() == 0) continue;
+		if (drop) loop->state.pairs.workValid = false;
+		if (loop->state.records.live() == 0) continue;
 		if (Omega::instance().isRunning() && std::this_thread::get_id() != loop->loopThread) {
 			// The objects that Python holds keep their last values; nothing may make or write them now.
 			if (drop || all)
@@ -1322,310 +374,6 @@ void PendularLoop::syncScene(Scene* scene, bool drop, bool all)
 
 void PendularLoop::syncCurrent(bool drop, bool all) { syncScene(Omega::instance().getScene().get(), drop, all); }
 
-boost::python::dict PendularLoop::memory() const
-{
-	boost::python::dict d;
-	d["Interaction"]   = sizeof(Interaction);
-	d["ScGeom"]        = sizeof(ScGeom);
-	d["PendularPhys"]  = sizeof(PendularPhys);
-	d["ViscElCapPhys"] = sizeof(ViscElCapPhys);
-	d["particle"]      = 2 * sizeof(Particle); // this step's and the last one's (see previous)
-	d["epoch"]         = sizeof(Near);
-	d["slot"]          = sizeof(Slot);
-	d["record"]        = sizeof(Record) + sizeof(shared_ptr<Interaction>); // with its entry of recordInteractions
-	d["invariants"]    = sizeof(Invariants) + sizeof(PendularPhys); // once per distinct set of bridge and contact parameters, with its prototype
-	d["forces"]        = 2 * sizeof(Vector3r);
-	return d;
-}
-
-void PendularLoop::step(const shared_ptr<Interaction>& I, const Resolved& r, Counts& c)
-{
-	const Body::id_t id1 = I->getId1(), id2 = I->getId2();
-	if (removeUnseen && !I->isReal() && I->iterLastSeen < scene->iter) return;
-	const Particle* p1 = size_t(id1) < particles.size() ? &particles[id1] : nullptr;
-	const Particle* p2 = size_t(id2) < particles.size() ? &particles[id2] : nullptr;
-	if (!p1 || !p2 || p1->kind == missing || p2->kind == missing) {
-		scene->interactions->requestErase(I);
-		return;
-	}
-	// yade.mpy: an interaction of two bodies of other subdomains is not this rank's.
-	if (scene->subdomain != p1->subdomain && scene->subdomain != p2->subdomain) {
-		scene->interactions->requestErase(I);
-		return;
-	}
-	if (p1->kind == clump || p2->kind == clump) return;
-	if (r.fused && p1->kind == pendularSphere && p2->kind == pendularSphere) {
-		++c.fused;
-		sphereSphere(I, r, c.thread);
-	} else {
-		++c.dispatched;
-		dispatched(I, r, c.thread);
-	}
-}
-
-void PendularLoop::sphereSphere(const shared_ptr<Interaction>& I, const Resolved& r, int thread)
-{
-	const Particle& p1 = particles[I->getId1()];
-	const Particle& p2 = particles[I->getId2()];
-	const Vector3r  shift2 = scene->isPeriodic ? Vector3r(cellHsize * I->cellDist.cast<Real>()) : Vector3r::Zero();
-	Vector3r        normal = (p2.pos + shift2) - p1.pos;
-	const Real      sumR   = p1.radius + p2.radius, reach = p1.reach + p2.reach;
-	const bool      wasReal = I->isReal();
-	// A potential interaction: one distance check. Ig2_Sphere_Sphere_ScGeom would make it real
-	// within interactionDetectionFactor (r1 + r2), but apart and without a bridge the law gives no
-	// force and resets it; so it becomes real at contact, where the bridge forms (or where the films
-	// touch, with formation='films').
-	if (!wasReal && normal.squaredNorm() > (sumR + reach) * (sumR + reach)) return;
-
-	const bool isNew = !I->geom;
-	if (isNew) I->geom = shared_ptr<ScGeom>(new ScGeom());
-	ScGeom&    geom = static_cast<ScGeom&>(*I->geom);
-	const Real norm = normal.norm();
-	normal /= norm;
-	const Real depth = sumR - norm;
-	if (!wasReal && depth < -reach) { // touching within round-off of the squared check, not in depth
-		I->geom.reset();
-		return;
-	}
-	const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
-	const Rotation rotate   = sphereGeometry(geom, p1, p2, normal, depth, shift2, shiftVel, isNew, r);
-	if (!I->phys) {
-		const auto& b1 = Body::byId(I->getId1(), scene);
-		const auto& b2 = Body::byId(I->getId2(), scene);
-		r.ip2->go(b1->material, b2->material, I);
-	}
-	if (!wasReal) I->iterMadeReal = scene->iter;
-	if (!applyLaw(I->getId1(), I->getId2(), I->isActive, geom, static_cast<PendularPhys&>(*I->phys), r, shift2, shiftVel, rotate, thread)) {
-		scene->interactions->requestErase(I);
-		return;
-	}
-	callbacksOn(*I, r);
-}
-
-template <class Geom>
-PendularLoop::Rotation PendularLoop::sphereGeometry(Geom& geom, const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth,
-                                                    const Vector3r& shift2, const Vector3r& shiftVel, bool isNew, const Resolved& r, bool record,
-                                                    bool friction) const
-{
-	geom.penetrationDepth = depth;
-	// A frictionless record: the law reads the gap and the normal only (the contact point and the radii
-	// of its objects follow from the bodies, see store).
-	if (record && !friction) {
-		geom.normal = normal;
-		return Rotation {};
-	}
-	geom.contactPoint = contactPointOf(p1, normal, depth);
-	geom.radius1      = p1.radius;
-	geom.radius2      = p2.radius;
-	Rotation axes;
-	if (depth >= 0 || isNew) { // in contact: what the law's tangential spring reads
-		if (!isNew) {
-			axes.orthonormalAxis = geom.normal.cross(normal);
-			const Real angle     = scene->dt * 0.5 * geom.normal.dot(p1.angVel + p2.angVel);
-			axes.twistAxis       = angle * geom.normal;
-		}
-		geom.normal = normal;
-		if (!record)
-			geom.shearInc = shearIncrement(p1, p2, normal, depth, geom.contactPoint, shift2, shiftVel, r.ig2->avoidGranularRatcheting, scene->dt);
-	} else
-		geom.normal = normal; // a separated bridge: the gap and the normal only
-	return axes;
-}
-
-Vector3r PendularLoop::shearIncrement(const Particle& p1, const Particle& p2, const Vector3r& normal, Real depth, const Vector3r& contactPoint,
-                                      const Vector3r& shift2, const Vector3r& shiftVel, bool ratcheting, Real dt)
-{
-	Vector3r relVel;
-	if (ratcheting) {
-		const Real alpha = (p1.radius + p2.radius) / (p1.radius + p2.radius - depth);
-		relVel           = (p2.vel - p1.vel) * alpha + p2.angVel.cross(-p2.radius * normal) - p1.angVel.cross(p1.radius * normal);
-		relVel += alpha * shiftVel;
-	} else {
-		const Vector3r c1x = contactPoint - p1.pos, c2x = contactPoint - (p2.pos + shift2);
-		relVel             = (p2.vel + p2.angVel.cross(c2x)) - (p1.vel + p1.angVel.cross(c1x));
-		relVel += shiftVel;
-	}
-	relVel = relVel - normal.dot(relVel) * normal;
-	return relVel * dt;
-}
-
-Vector3r PendularLoop::recordShearInc(const Record& rec, const std::vector<Particle>& seen) const
-{
-	if (!(rec.penetrationDepth >= 0) || size_t(math::max(rec.id1, rec.id2)) >= seen.size()) return rec.shearInc;
-	const Particle& p1           = seen[rec.id1];
-	const Vector3r  contactPoint = contactPointOf(p1, rec.normal, rec.penetrationDepth);
-	const Vector3r  zero         = Vector3r::Zero();
-	return shearIncrement(p1, seen[rec.id2], rec.normal, rec.penetrationDepth, contactPoint, zero, zero, known.seenRatcheting, known.seenDt);
-}
-
-template <class Geom, class Phys, class Rotate>
-bool PendularLoop::applyLaw(Body::id_t id1, Body::id_t id2, bool isActive, const Geom& geom, Phys& phys, const Resolved& r, const Vector3r& shift2,
-                            const Vector3r& shiftVel, const Rotate& rotate, int thread)
-{
-	const Particle&          p1 = particles[id1];
-	const Particle&          p2 = particles[id2];
-	const PendularKinematics k { p1.pos, p1.vel, p1.angVel, p2.pos, p2.vel, p2.angVel, shift2, shiftVel,
-		                     pendularOwner(scene->subdomain, p1.subdomain, p2.subdomain), id1, id2 };
-	ThreadSink               sink { directParts[size_t(thread)], threadForce[thread].data(), threadTorque[thread].data(), id1, id2, isActive };
-	return r.law->apply(geom, phys, k, scene->dt, rotate, sink);
-}
-
-void PendularLoop::callbacksOn(Interaction& I, const Resolved& r)
-{
-	for (size_t j = 0; j < r.callbacks.size(); ++j)
-		if (r.callbacks[j]) (*r.callbacks[j])(callbacks[j].get(), &I);
-}
-
-// Every interaction that is not fused: the steps of InteractionLoop (geometry, physics and law
-// functors chosen by the dispatchers and cached on the interaction), except that our own law runs
-// inline into the thread's arrays, so that the forces of a body are summed in one place.
-void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& r, int thread)
-{
-	const shared_ptr<Body>& b1_ = Body::byId(I->getId1(), scene);
-	const shared_ptr<Body>& b2_ = Body::byId(I->getId2(), scene);
-	if (!I->functorCache.geomExists || !b1_->shape || !b2_->shape) return;
-	bool swap = false;
-	if (!I->functorCache.geom) {
-		I->functorCache.geom = geomDispatcher->getFunctor2D(b1_->shape, b2_->shape, swap);
-		if (!I->functorCache.geom) {
-			I->functorCache.geomExists = false;
-			return;
-		}
-	}
-	if (swap) I->swapOrder();
-	const shared_ptr<Body>& b1      = swap ? b2_ : b1_;
-	const shared_ptr<Body>& b2      = swap ? b1_ : b2_;
-	const bool              wasReal = I->isReal();
-	const Vector3r          shift2  = scene->isPeriodic ? Vector3r(cellHsize * I->cellDist.cast<Real>()) : Vector3r::Zero();
-	if (!I->functorCache.geom->go(b1->shape, b2->shape, *b1->state, *b2->state, shift2, /*force*/ false, I)) {
-		if (wasReal) {
-			LOG_WARN("IGeomFunctor returned false on existing interaction " << I->getId1() << "-" << I->getId2());
-			scene->interactions->requestErase(I);
-		}
-		return;
-	}
-	if (!I->functorCache.phys) {
-		I->functorCache.phys = physDispatcher->getFunctor2D(b1->material, b2->material, swap);
-		if (!I->functorCache.phys)
-			throw std::runtime_error(
-			        "Undefined or ambiguous IPhys dispatch for types " + b1->material->getClassName() + " and " + b2->material->getClassName() + ".");
-	}
-	I->functorCache.phys->go(b1->material, b2->material, I);
-	if (!wasReal) I->iterMadeReal = scene->iter;
-	if (!I->functorCache.constLaw) {
-		I->functorCache.constLaw = lawDispatcher->getFunctor2D(I->geom, I->phys, swap);
-		if (!I->functorCache.constLaw)
-			throw std::runtime_error(
-			        "No Law2 functor handles interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2()) + " (geometry "
-			        + I->geom->getClassName() + ", physics " + I->phys->getClassName() + ")");
-	}
-	bool keep;
-	if (r.law && I->functorCache.constLaw.get() == r.law) {
-		const ScGeom&  geom     = static_cast<const ScGeom&>(*I->geom);
-		const Vector3r shiftVel = scene->isPeriodic ? scene->cell->intrShiftVel(I->cellDist) : Vector3r::Zero();
-		keep = applyLaw(I->getId1(), I->getId2(), I->isActive, geom, static_cast<PendularPhys&>(*I->phys), r, shift2, shiftVel,
-		                [&geom](Vector3r& v) { geom.rotate(v); }, thread);
-	} else
-		keep = I->functorCache.constLaw->go(I->geom, I->phys, I.get());
-	if (!keep) scene->interactions->requestErase(I);
-	if (I->isReal()) callbacksOn(*I, r);
-}
-
-void PendularLoop::handOverBorders(int thread, const pendular::SummedArrays& summed)
-{
-	for (size_t k = 0; k < threadForce.size(); ++k) {
-		if (int(k) == thread) continue;
-		for (const Body::id_t id : borders[k][size_t(thread)]) {
-			Vector3r &f = threadForce[k][id], &t = threadTorque[k][id];
-			if (f != Vector3r::Zero()) summed.forces[id] += f;
-			if (t != Vector3r::Zero()) summed.torques[id] += t;
-			f = t = Vector3r::Zero();
-		}
-	}
-}
-
-void PendularLoop::flushForces(int threads, bool parted, bool direct, bool bordersDone)
-{
-	// Into the force container's summed arrays, not through addForce: addForce writes the container's
-	// shared flag and its per-thread maximum ids at every call, and two threads doing so contend for those
-	// cache lines (it doubled this phase on two threads). sync() first adds what the dispatched functors
-	// of this pass added through addForce (as the integrator's sync would). direct: each thread of the
-	// pass added the forces of its part of the bodies straight into the summed arrays (see ThreadSink),
-	// which cover every body (the pass's addMaxId and sync).
-	ForceContainer& forces = scene->forces;
-	const long      n      = long(particles.size());
-	if (n == 0) return;
-	forces.sync();
-	const long arrays = long(threadForce.size());
-	// One thread that added every body's forces straight into the summed arrays: nothing in its arrays;
-	// several whose pass handed the borders over (bordersDone): nothing left in theirs.
-	if (direct && (arrays == 1 || bordersDone)) {
-		known.flushTeam     = int(arrays);
-		known.forcesPending = false;
-		return;
-	}
-	const pendular::SummedArrays summed = pendular::summedArrays(forces, n);
-	// Through the calls only if the summed arrays are not at hand (a call into libyade per body and array
-	// was a third of this phase).
-	const auto add = [&forces, &summed](long id, const Vector3r& f, const Vector3r& t) {
-		if (f != Vector3r::Zero()) {
-			if (summed.forces) summed.forces[id] += f;
-			else
-				forces.addForceUnsynced(Body::id_t(id), f);
-		}
-		if (t != Vector3r::Zero()) {
-			if (summed.torques) summed.torques[id] += t;
-			else
-				forces.addTorqueUnsynced(Body::id_t(id), t);
-		}
-	};
-	// Each thread the bodies of its part (bodyParts), whose entries of every thread's arrays it zeroes once
-	// read: the arrays are zero for the next pass, and what a thread wrote only for its own bodies stays in
-	// its cache. After a pass by parts (parted), array k holds forces only on the bodies of part k and of its
-	// borders, or only on its borders if that pass added part k's straight into the summed arrays (direct):
-	// the other entries are exact zeros, and are neither read nor written (reading them moved every line of
-	// every array from the core that zeroed it to the other one at every step). In one thread the sum per
-	// body is that of InteractionLoop's: the thread's sum.
-#ifdef YADE_OPENMP
-#pragma omp parallel num_threads(threads) if (long(particles.size()) >= parallelBodies)
-#endif
-	{
-		const int  thread  = pendular::threadNumber();
-		const auto part    = pendular::partOf(bodyParts, n, thread, pendular::teamSize());
-		const bool byParts = parted && pendular::teamSize() == arrays;
-		if (thread == 0) known.flushTeam = pendular::teamSize();
-		if (arrays == 1) // one thread's arrays: no other to look into
-			for (long id = part.first; id < part.second; ++id) {
-				const Vector3r f = threadForce[0][id], t = threadTorque[0][id];
-				threadForce[0][id] = threadTorque[0][id] = Vector3r::Zero();
-				add(id, f, t);
-			}
-		else {
-			// Per array, the next of its border bodies in this part.
-			std::vector<const Body::id_t*> next(size_t(arrays), nullptr), last(size_t(arrays), nullptr);
-			if (byParts)
-				for (long k = 0; k < arrays; ++k)
-					if (k != thread) {
-						const auto& ids = borders[size_t(k)][size_t(thread)];
-						next[size_t(k)] = ids.data();
-						last[size_t(k)] = ids.data() + ids.size();
-					}
-			for (long id = part.first; id < part.second; ++id) {
-				Vector3r f = Vector3r::Zero(), t = Vector3r::Zero();
-				for (long k = 0; k < arrays; ++k) {
-					if (byParts && k != thread) {
-						if (next[size_t(k)] == last[size_t(k)] || *next[size_t(k)] != id) continue;
-						++next[size_t(k)];
-					}
-					f += threadForce[k][id];
-					t += threadTorque[k][id];
-					threadForce[k][id] = threadTorque[k][id] = Vector3r::Zero();
-				}
-				add(id, f, t);
-			}
-		}
-	}
-	known.forcesPending = false;
-}
+boost::python::dict PendularLoop::memory() const { return pendular::loopMemory(); }
 
 } // namespace yade

@@ -1,3 +1,4 @@
+// PendularRotationEngine (see PendularRotationEngine.hpp): the velocities of the step from one rotation.
 #include "PendularRotationEngine.hpp"
 #include "Passes.hpp"
 #include "Pendular.hpp"
