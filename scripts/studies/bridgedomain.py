@@ -170,7 +170,8 @@ def cause(stage, error):
 
 
 def case_row(geom, ratio, theta_small, theta_large, small_first):
-    """Limit of one ordered case, with the quantities at the last solved volume."""
+    """Limit of one ordered case, with the quantities at the last solved volume. For equal spheres the
+    "small" sphere is the one with theta_small."""
     R1, R2 = radii(ratio, small_first)
     t1, t2 = (theta_small, theta_large) if small_first or ratio == 0 else (theta_large, theta_small)
     t0 = time.perf_counter()
@@ -203,8 +204,6 @@ def case_row(geom, ratio, theta_small, theta_large, small_first):
         at = row["steepest_at_contact"]
         solid = 1 if at < 1e-3 else 2 if at > 1 - 1e-3 else 0
         names = {1: "small sphere" if row["small_is_solid1"] else "large sphere", 2: "wall" if ratio == 0 else "large sphere" if row["small_is_solid1"] else "small sphere"}
-        if ratio == 1:
-            names = {1: "sphere 1", 2: "sphere 2"}
         row["vertical_on"] = names.get(solid, "interior")
         if abs(row["phi_max_contact_rad"] + row["phi_min_contact_rad"]) < 1e-4 and solid:  # as steep on both contact lines
             row["vertical_on"] = "both spheres" if ratio else "both solids"
