@@ -226,8 +226,13 @@ def evaluate(geometries=GEOMETRIES, angles=ANGLES_DEG, log=None):
                     if log:
                         log(row)
         if ratio == 1:
-            rows += [dict(first[tl, ts], small_is_solid1=0, theta_small_deg=ts, theta_large_deg=tl, seconds=0.0)
-                     for ts in angles for tl in angles]
+            flip = {"small sphere": "large sphere", "large sphere": "small sphere"}
+            for ts in angles:
+                for tl in angles:
+                    r = dict(first[tl, ts], small_is_solid1=0, theta_small_deg=ts, theta_large_deg=tl, seconds=0.0)
+                    if "vertical_on" in r:
+                        r["vertical_on"] = flip.get(r["vertical_on"], r["vertical_on"])
+                    rows.append(r)
     return rows
 
 
