@@ -18,7 +18,11 @@ the steepest meniscus angle max |phi| (the solver integrates the profile as a gr
 refuses |phi| >= pi/2, young_laplace.cpp ``arc``), and the clearance between the meniscus and both
 solids (a profile that cut into a solid would be no physical bridge; the solver does not check it).
 phi at the contact line on a sphere is beta + theta - pi/2, so a vertical meniscus there means
-beta + theta = pi; beta -> pi would be a sphere engulfed by the liquid.
+beta + theta = pi; beta -> pi would be a sphere engulfed by the liquid. Where the solver stops at contact,
+the margin pi - theta - beta is extrapolated to the limit volume (``extrapolated_margin``), which tells a
+meniscus that turns vertical there from a largest volume at contact reached before.
+
+The documented limit of a case (``limits_table``) is the smaller of the two orders of the solids.
 
 CSV columns carry their unit as a suffix (_m, _m3, _Pa, _N, _deg, _rad); vstar and the ratios are
 dimensionless.
@@ -43,6 +47,9 @@ GAP_FRACTIONS = (0.0, 0.25, 0.5, 0.75, 0.95, 1.0)
 SCAN = (1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.5) + tuple(2.0 ** k for k in range(0, 11))
 VSTAR_CAP = SCAN[-1]
 REL_RESOLUTION = 1e-3  # bisection stops when the bracket is narrower than this in ln V*
+VERTICAL = 0.02       # [rad] extrapolated margin below which the meniscus counts as vertical at the limit (the sqrt model
+#                       misses by up to 0.011 where it is vertical; a fold before vertical is 0.07-0.08 away)
+FOLD_PROBES = (0.0025, 0.01)  # relative distances below the limit where the margin to vertical is extrapolated from
 EXTRA_ABOVE = 2        # scan points above the first refusal tried too: any success there is a hole
 # The solver matches the volume to its Newton tolerance (1e-12 in the residual, relative) and the
 # neck and contact-line forces agree to ~1e-12 (first integral): 1e-8 leaves room and still flags
@@ -157,13 +164,29 @@ def find_limit(R1, R2, theta1, theta2):
     return good, bad, v_good, v_bad, holes, gaps, n
 
 
+def extrapolated_margin(R1, R2, theta1_deg, theta2_deg, v_limit, solid):
+    """pi - theta - beta on a sphere's contact line at contact, extrapolated to the limit volume: near a
+    fold in V the filling angle approaches its value there like sqrt(V_limit - V), so from the margins at
+    FOLD_PROBES = (d, 4d) below the limit, m = m0 + c sqrt(d) gives m0 = 2 m(d) - m(4d). m0 ~ 0: the
+    meniscus turns vertical at that contact line at the limit; m0 > 0: the volume at contact is largest
+    before the meniscus is vertical. NaN if a probe has no bridge."""
+    theta = math.radians(theta1_deg if solid == 1 else theta2_deg)
+    m = []
+    for d in FOLD_PROBES:
+        res = attempt(R1, R2, v_limit * (1 - d), math.radians(theta1_deg), math.radians(theta2_deg))
+        if not res["ok"]:
+            return float("nan")
+        m.append(math.pi - theta - res["solutions"][0]["beta%d" % solid])
+    return 2 * m[0] - m[1]
+
+
 def cause(stage, error):
     """Short name of why the solver stopped, from its message."""
     if error is None:
         return "none up to the cap"
-    for key, name in (("no pendular bridge at contact", "no bridge at contact"), ("continuation stalled", "continuation stalled"),
-                      ("near the fold", "no bridge near the fold"), ("no bridge found at gap", "solve: no bridge at gap"),
-                      ("singular bridge equations", "singular at contact")):
+    for key, name in (("no pendular bridge at contact", "no bridge at contact"), ("rupture gap = -", "negative rupture gap"),
+                      ("continuation stalled", "continuation stalled"), ("near the fold", "no bridge near the fold"),
+                      ("no bridge found at gap", "solve: no bridge at gap"), ("singular bridge equations", "singular at contact")):
         if key in error:
             return name
     return stage + ": " + error
@@ -203,10 +226,14 @@ def case_row(geom, ratio, theta_small, theta_large, small_first):
         row["vertical_margin_rad"] = math.pi / 2 - max(row["phi_max_contact_rad"], -row["phi_min_contact_rad"])
         at = row["steepest_at_contact"]
         solid = 1 if at < 1e-3 else 2 if at > 1 - 1e-3 else 0
-        names = {1: "small sphere" if row["small_is_solid1"] else "large sphere", 2: "wall" if ratio == 0 else "large sphere" if row["small_is_solid1"] else "small sphere"}
+        names = {1: "small sphere" if row["small_is_solid1"] else "large sphere", 2: "large sphere" if row["small_is_solid1"] else "small sphere"}
+        if ratio == 0:
+            names = {1: "sphere", 2: "wall"}
         row["vertical_on"] = names.get(solid, "interior")
         if abs(row["phi_max_contact_rad"] + row["phi_min_contact_rad"]) < 1e-4 and solid:  # as steep on both contact lines
             row["vertical_on"] = "both spheres" if ratio else "both solids"
+        if row["cause"] == "no bridge at contact" and solid and names[solid] != "wall":
+            row["vertical_margin_extrapolated_rad"] = extrapolated_margin(R1, R2, t1, t2, math.sqrt(v_good * v_bad), solid)
     row["seconds"] = time.perf_counter() - t0
     return row
 
@@ -254,7 +281,8 @@ def swap_rows(rows):
 
 
 def limits_table(rows):
-    """One row per case (small solid first), with the swapped order's limit and rupture-gap agreement."""
+    """One row per case: the documented limit is the smaller of the two orders of two spheres (below it the
+    solver works whichever solid comes first), with the cause and the state at contact of the order that set it."""
     swapped = {(a["geometry"], a["theta_small_deg"], a["theta_large_deg"]): b for a, b in swap_pairs(rows)}
     diffs = {}
     for s in swap_rows(rows):
@@ -266,83 +294,105 @@ def limits_table(rows):
             continue
         key = (r["geometry"], r["theta_small_deg"], r["theta_large_deg"])
         s = swapped.get(key)
-        nan = float("nan")
+        m = r if s is None or r["vstar_limit"] <= s["vstar_limit"] else s
+        small, large = ("1", "2") if m["small_is_solid1"] else ("2", "1")
         out.append({"geometry": r["geometry"], "theta_small_deg": r["theta_small_deg"], "theta_large_deg": r["theta_large_deg"],
-                    "vstar_limit": "%.5g" % r["vstar_limit"], "vstar_limit_swapped": "%.5g" % s["vstar_limit"] if s else "",
-                    "swap_gap_rel_diff_max": "%.2g" % diffs[key] if key in diffs else "", "cause": r["cause"],
-                    "beta_small_rad": "%.4f" % r.get("beta1_contact_rad", nan),
-                    "beta_large_rad": "%.4f" % r.get("beta2_contact_rad", nan) if r["ratio_small_large"] else "",
-                    "steepest_on": r.get("vertical_on", ""), "vertical_margin_rad": "%.2g" % r.get("vertical_margin_rad", nan)})
+                    "vstar_limit": m["vstar_limit"], "vstar_limit_small_first": r["vstar_limit"],
+                    "vstar_limit_small_second": s["vstar_limit"] if s else "", "cause": m["cause"],
+                    "steepest_on": m.get("vertical_on", ""), "vertical_margin_rad": m.get("vertical_margin_rad", ""),
+                    "vertical_margin_extrapolated_rad": m.get("vertical_margin_extrapolated_rad", ""),
+                    "beta_small_rad": m.get("beta%s_contact_rad" % small, ""),
+                    "beta_large_rad": m.get("beta%s_contact_rad" % large, "") if r["ratio_small_large"] else "",
+                    "swap_gap_rel_diff_max": diffs.get(key, "")})
     return out
 
 
 def summary(rows):
-    """Per geometry, over the angles and both orders: the range of the limit, where its minimum is, the
-    causes, how close to vertical the meniscus is at the limit, holes, and the agreement of the orders."""
+    """Per geometry: the range of the documented limit over the angle pairs (the smaller of the two
+    orders), where its minimum and maximum are; over the ordered cases: the causes, how close to vertical
+    the meniscus is where the solver stops at contact, holes, the agreement of the two orders."""
+    table = limits_table(rows)
     pairs = swap_pairs(rows)
     sw = swap_rows(rows)
     out = []
     for geom, _ in GEOMETRIES:
+        ts = [t for t in table if t["geometry"] == geom]
         rs = [r for r in rows if r["geometry"] == geom]
-        if not rs:
+        if not ts:
             continue
-        lo = min(rs, key=lambda r: r["vstar_limit"])
-        hi = max(rs, key=lambda r: r["vstar_limit"])
+        lo = min(ts, key=lambda t: t["vstar_limit"])
+        hi = max(ts, key=lambda t: t["vstar_limit"])
+        vertical = [r for r in rs if r["cause"] == "no bridge at contact"]
         solved = [r for r in rs if "vertical_margin_rad" in r]
-        ln_diffs = [abs(math.log(a["vstar_limit"] / b["vstar_limit"])) for a, b in pairs if a["geometry"] == geom and a["vstar_limit"] > 0]
-        out.append({"geometry": geom, "cases": len(rs), "vstar_limit_min": lo["vstar_limit"],
-                    "min_at_theta_small_deg": lo["theta_small_deg"], "min_at_theta_large_deg": lo["theta_large_deg"],
+        ln_diffs = [abs(math.log(a["vstar_limit"] / b["vstar_limit"])) for a, b in pairs if a["geometry"] == geom]
+        count = lambda values: "; ".join("%s (%d)" % (v, values.count(v)) for v in sorted(set(values)))
+        out.append({"geometry": geom, "angle_pairs": len(ts), "ordered_cases": len(rs),
+                    "vstar_limit_min": lo["vstar_limit"], "min_at_theta_small_deg": lo["theta_small_deg"], "min_at_theta_large_deg": lo["theta_large_deg"],
                     "vstar_limit_max": hi["vstar_limit"], "max_at_theta_small_deg": hi["theta_small_deg"], "max_at_theta_large_deg": hi["theta_large_deg"],
-                    "vstar_limit_median": float(np.median([r["vstar_limit"] for r in rs])),
-                    "causes": "; ".join("%s (%d)" % (c, sum(r["cause"] == c for r in rs)) for c in sorted({r["cause"] for r in rs})),
-                    "vertical_on": "; ".join("%s (%d)" % (c, sum(r.get("vertical_on") == c for r in solved)) for c in sorted({r.get("vertical_on") for r in solved})),
-                    "vertical_margin_max_rad": max(r["vertical_margin_rad"] for r in solved),
+                    "vstar_limit_median": float(np.median([t["vstar_limit"] for t in ts])),
+                    "causes": count([r["cause"] for r in rs]),
+                    "steepest_on_where_no_bridge_at_contact": count([r["vertical_on"] for r in vertical]),
+                    "vertical_margin_max_where_no_bridge_at_contact_rad": max((r["vertical_margin_rad"] for r in vertical), default=""),
+                    "vertical_at_limit": sum(r.get("vertical_margin_extrapolated_rad", INF) < VERTICAL for r in vertical),
+                    "fold_before_vertical": sum(r.get("vertical_margin_extrapolated_rad", -INF) >= VERTICAL for r in vertical),
+                    "vertical_margin_extrapolated_max_rad": max((r.get("vertical_margin_extrapolated_rad", float("nan")) for r in vertical), default=""),
                     "clearance_min": min(min(r["clearance1_%s" % t], r["clearance2_%s" % t]) for r in solved for t in ("contact", "rupture")),
                     "profile_end_mismatch_max": max(r["profile_end_mismatch_%s" % t] for r in solved for t in ("contact", "rupture")),
                     "holes": sum(bool(r["holes_above"]) for r in rs),
-                    "swap_ln_limit_diff_max": max(ln_diffs) if ln_diffs else "",
+                    "swap_ln_limit_diff_max": max(ln_diffs, default=""),
                     "swap_gap_rel_diff_max": max((s["rel_diff"] for s in sw if s["geometry"] == geom), default=""),
                     "seconds": sum(r["seconds"] for r in rs)})
     return out
 
 
-def write_csv(path, rows):
-    """Rows to CSV; keys starting with _ are internal."""
+def write_csv(path, rows, digits=None):
+    """Rows to CSV; keys starting with _ are internal; floats to `digits` significant digits if given."""
     keys = []
     for r in rows:
         keys += [k for k in r if k not in keys and not k.startswith("_")]
+    fmt = (lambda v: "%.*g" % (digits, v) if isinstance(v, float) else v) if digits else (lambda v: v)
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
         w.writeheader()
-        w.writerows(rows)
+        w.writerows({k: fmt(v) for k, v in r.items()} for r in rows)
 
 
 def plot(rows, path):
+    """The limit against the angle on the small sphere, one line per angle on the other solid, one panel per
+    geometry: the documented limit (line), each order (o: small sphere first, x: second) and the volumes where
+    an order stops on a negative rupture gap (red square) or at the cap (triangle)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(GEOMETRIES), figsize=(4.2 * len(GEOMETRIES), 4), sharey=True)
+    table = limits_table(rows)
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5), sharey=True)
     cmap = plt.get_cmap("viridis")
-    for ax, (geom, ratio) in zip(axes, GEOMETRIES):
+    for ax, (geom, ratio) in zip(axes.flat, GEOMETRIES):
         for i, tl in enumerate(ANGLES_DEG):
             color = cmap(i / (len(ANGLES_DEG) - 1))
-            for first, style in ((1, "-o"), (0, "x")):
-                rs = sorted((r for r in rows if r["geometry"] == geom and r["theta_large_deg"] == tl and r["small_is_solid1"] == first),
-                            key=lambda r: r["theta_small_deg"])
-                if rs:
-                    ax.plot([r["theta_small_deg"] for r in rs], [r["vstar_limit"] for r in rs], style, color=color, ms=4,
-                            label=("%d" % tl) if first else None)
+            ts = sorted((t for t in table if t["geometry"] == geom and t["theta_large_deg"] == tl), key=lambda t: t["theta_small_deg"])
+            ax.plot([t["theta_small_deg"] for t in ts], [t["vstar_limit"] for t in ts], "-", color=color, label="%d" % tl)
+            for r in rows:
+                if r["geometry"] != geom or r["theta_large_deg"] != tl:
+                    continue
+                x, y = r["theta_small_deg"], r["vstar_limit"]
+                ax.plot(x, y, "o" if r["small_is_solid1"] else "x", color=color, ms=4, mfc="none")
+                if r["cause"] == "negative rupture gap":
+                    ax.plot(x, y, "s", color="red", ms=8, mfc="none")
+                elif r["cause"] == "none up to the cap":
+                    ax.plot(x, y, "^", color=color, ms=7)
         ax.set_yscale("log")
         ax.set_title("wall" if ratio == 0 else "R_small/R_large = %s" % geom)
         ax.set_xlabel("contact angle on the %s [deg]" % ("sphere" if ratio == 0 else "small sphere"))
-        ax.axhline(0.5, color="grey", lw=0.8, ls=":")
         ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_ylabel("largest V* = V/R_small^3 solved")
-    axes[-1].legend(title="angle on the other\nsolid [deg]", fontsize=7, title_fontsize=7, loc="lower right")
-    fig.suptitle("Exact Young-Laplace solver: largest volume followed from contact to rupture (o: small sphere = solid 1, x: solid 2)",
-                 fontsize=9)
+    for ax in axes[:, 0]:
+        ax.set_ylabel("largest V* = V/R_small^3 solved")
+    axes[0, 0].legend(title="angle on the other solid [deg]", fontsize=7, title_fontsize=7, ncol=4, loc="lower left")
+    fig.suptitle("Exact Young-Laplace solver: largest volume followed from contact to rupture\n"
+                 "line: smaller of both orders; o / x: small sphere as solid 1 / 2; red square: negative rupture gap; "
+                 "triangle: scan cap", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
@@ -355,6 +405,6 @@ def run(outdir, datadir, geometries=GEOMETRIES, angles=ANGLES_DEG, log=None):
     write_csv(os.path.join(outdir, "swap.csv"), swap_rows(rows))
     summ = summary(rows)
     write_csv(os.path.join(outdir, "summary.csv"), summ)
-    write_csv(os.path.join(datadir, "limits.csv"), limits_table(rows))
+    write_csv(os.path.join(datadir, "limits.csv"), limits_table(rows), digits=5)
     plot(rows, os.path.join(outdir, "bridge_domain.png"))
     return rows, summ
