@@ -232,8 +232,11 @@ def case_row(geom, ratio, theta_small, theta_large, small_first):
         row["vertical_on"] = names.get(solid, "interior")
         if abs(row["phi_max_contact_rad"] + row["phi_min_contact_rad"]) < 1e-4 and solid:  # as steep on both contact lines
             row["vertical_on"] = "both spheres" if ratio else "both solids"
-        if row["cause"] == "no bridge at contact" and solid and names[solid] != "wall":
-            row["vertical_margin_extrapolated_rad"] = extrapolated_margin(R1, R2, t1, t2, math.sqrt(v_good * v_bad), solid)
+        if row["cause"] == "no bridge at contact":  # on the sphere whose contact line is nearest to vertical
+            k = 1 if margins[0] <= margins[1] else 2
+            row["margin_on"] = {1: "small sphere" if row["small_is_solid1"] else "large sphere",
+                                2: "large sphere" if row["small_is_solid1"] else "small sphere"}[k] if ratio else "sphere"
+            row["vertical_margin_extrapolated_rad"] = extrapolated_margin(R1, R2, t1, t2, math.sqrt(v_good * v_bad), k)
     row["seconds"] = time.perf_counter() - t0
     return row
 
@@ -257,8 +260,9 @@ def evaluate(geometries=GEOMETRIES, angles=ANGLES_DEG, log=None):
             for ts in angles:
                 for tl in angles:
                     r = dict(first[tl, ts], small_is_solid1=0, theta_small_deg=ts, theta_large_deg=tl, seconds=0.0)
-                    if "vertical_on" in r:
-                        r["vertical_on"] = flip.get(r["vertical_on"], r["vertical_on"])
+                    for k in ("vertical_on", "margin_on"):
+                        if k in r:
+                            r[k] = flip.get(r[k], r[k])
                     rows.append(r)
     return rows
 
@@ -300,7 +304,7 @@ def limits_table(rows):
                     "vstar_limit": m["vstar_limit"], "vstar_limit_small_first": r["vstar_limit"],
                     "vstar_limit_small_second": s["vstar_limit"] if s else "", "cause": m["cause"],
                     "steepest_on": m.get("vertical_on", ""), "vertical_margin_rad": m.get("vertical_margin_rad", ""),
-                    "vertical_margin_extrapolated_rad": m.get("vertical_margin_extrapolated_rad", ""),
+                    "margin_on": m.get("margin_on", ""), "vertical_margin_extrapolated_rad": m.get("vertical_margin_extrapolated_rad", ""),
                     "beta_small_rad": m.get("beta%s_contact_rad" % small, ""),
                     "beta_large_rad": m.get("beta%s_contact_rad" % large, "") if r["ratio_small_large"] else "",
                     "swap_gap_rel_diff_max": diffs.get(key, "")})
@@ -335,7 +339,8 @@ def summary(rows):
                     "vertical_margin_max_where_no_bridge_at_contact_rad": max((r["vertical_margin_rad"] for r in vertical), default=""),
                     "vertical_at_limit": sum(r.get("vertical_margin_extrapolated_rad", INF) < VERTICAL for r in vertical),
                     "fold_before_vertical": sum(r.get("vertical_margin_extrapolated_rad", -INF) >= VERTICAL for r in vertical),
-                    "vertical_margin_extrapolated_max_rad": max((r.get("vertical_margin_extrapolated_rad", float("nan")) for r in vertical), default=""),
+                    "vertical_margin_extrapolated_max_rad": max((r["vertical_margin_extrapolated_rad"] for r in vertical), default=""),
+                    "margin_on_where_no_bridge_at_contact": count([r["margin_on"] for r in vertical]),
                     "clearance_min": min(min(r["clearance1_%s" % t], r["clearance2_%s" % t]) for r in solved for t in ("contact", "rupture")),
                     "profile_end_mismatch_max": max(r["profile_end_mismatch_%s" % t] for r in solved for t in ("contact", "rupture")),
                     "holes": sum(bool(r["holes_above"]) for r in rs),
