@@ -392,11 +392,13 @@ def plot(rows, path):
         ax.grid(True, which="both", alpha=0.3)
     for ax in axes[:, 0]:
         ax.set_ylabel("largest V* = V/R_small^3 solved")
-    axes[0, 0].legend(title="angle on the other solid [deg]", fontsize=7, title_fontsize=7, ncol=4, loc="lower left")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, title="contact angle on the other solid (large sphere or wall) [deg]", fontsize=8,
+               title_fontsize=8, ncol=len(ANGLES_DEG), loc="lower center")
     fig.suptitle("Exact Young-Laplace solver: largest volume followed from contact to rupture\n"
                  "line: smaller of both orders; o / x: small sphere as solid 1 / 2; red square: negative rupture gap; "
                  "triangle: scan cap", fontsize=9)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
