@@ -24,8 +24,8 @@ def read_limits():
 
 
 ROWS = read_limits()
-# Two cases per geometry, drawn with a fixed seed among those where the solver stops below the scan's cap.
-SEEDED = [r for g in RATIOS for r in random.Random(7).sample(
+# Two cases per geometry, drawn with fixed seeds among those where the solver stops below the scan's cap.
+SEEDED = [r for i, g in enumerate(RATIOS) for r in random.Random(7 + i).sample(
     [q for q in ROWS if q["geometry"] == g and q["cause"] != "none up to the cap"], 2)]
 
 
@@ -100,3 +100,18 @@ def test_swapping_the_solids_keeps_the_rupture_gap(row, vstar):
     a = bridge(row, vstar, small_first=True).rupture_gap
     b = bridge(row, vstar, small_first=False).rupture_gap
     assert b == pytest.approx(a, rel=1e-9, abs=0)
+
+
+@pytest.mark.parametrize("row", [r for r in SEEDED if r["cause"] == "no bridge at contact" and float(r["vertical_margin_extrapolated_rad"]) < 0.02],
+                         ids=ident)
+def test_meniscus_vertical_at_the_limit(row):
+    # The documented reason: just below the limit (0.998 of it) the contact line on the sphere the table names
+    # is nearly where the meniscus leaves it vertically, beta + theta = pi. The margin pi - theta - beta falls
+    # like sqrt(1 - V/V_limit) (measured at most 0.027 rad at 0.998 over every such case of the table);
+    # 0.04 rad still fails where the solver stops for another reason (the folds before vertical stay 0.03-0.07
+    # rad away at the limit itself).
+    s = bridge(row, 0.998 * float(row["vstar_limit"])).solve(0.0, GAMMA)
+    small = row["margin_on"] in ("small sphere", "sphere")
+    beta = s["beta1"] if small else s["beta2"]
+    theta = math.radians(float(row["theta_small_deg"] if small else row["theta_large_deg"]))
+    assert 0 < math.pi - theta - beta < 0.04
