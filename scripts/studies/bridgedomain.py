@@ -8,9 +8,9 @@ bracketed by bisection in ln V* to ``REL_RESOLUTION``. A volume counts as solved
 succeeds and ``solve`` returns a bridge at every fraction ``GAP_FRACTIONS`` of the rupture gap whose
 volume matches the input and whose neck and contact-line forces agree (``VOLUME_TOL``, ``FORCE_TOL``).
 
-Two spheres are computed in both orders, the small one as solid 1 and as solid 2, which must give
+Two spheres are computed in both orders, the small one as solid 1 and as solid 2, which should give
 the same limit (the solver scales every length by R1, so the two orders take different numerical
-paths). A wall can only be solid 2 (R1 must be finite).
+paths; where one stops on a negative rupture gap they do not). A wall can only be solid 2 (R1 must be finite).
 
 At the last solved volume the meniscus is integrated again here, in arc length from the contact
 line on solid 1 with the pressure the solver returns (``meniscus``), to report what ends the domain:
@@ -47,8 +47,9 @@ GAP_FRACTIONS = (0.0, 0.25, 0.5, 0.75, 0.95, 1.0)
 SCAN = (1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.5) + tuple(2.0 ** k for k in range(0, 11))
 VSTAR_CAP = SCAN[-1]
 REL_RESOLUTION = 1e-3  # bisection stops when the bracket is narrower than this in ln V*
-VERTICAL = 0.02       # [rad] extrapolated margin below which the meniscus counts as vertical at the limit (the sqrt model
-#                       misses by up to 0.011 where it is vertical; a fold before vertical is 0.07-0.08 away)
+# [rad] extrapolated margin below which the meniscus counts as vertical at the limit: where it is, the sqrt model
+# gives -0.015..0.002; the largest volumes at contact reached before vertical are 0.029-0.073 away.
+VERTICAL = 0.02
 FOLD_PROBES = (0.0025, 0.01)  # relative distances below the limit where the margin to vertical is extrapolated from
 EXTRA_ABOVE = 2        # scan points above the first refusal tried too: any success there is a hole
 # The solver matches the volume to its Newton tolerance (1e-12 in the residual, relative) and the
@@ -89,10 +90,10 @@ def attempt(R1, R2, vstar, theta1, theta2):
 
 def meniscus(sol, R1, R2, theta1, theta2):
     """The meniscus of a solution, integrated again in arc length from solid 1's contact line
-    (x' = cos phi, y' = sin phi, phi' = cos phi / y - P, lengths / R1): max and min of phi [rad],
-    where max |phi| lies (arc-length fraction, 0: solid 1's contact line, 1: solid 2's), the smallest clearance to solid 1
-    and to solid 2 (/R_small; negative: the profile cuts into the solid), and the mismatch of the
-    end point with the solver's contact line on solid 2 (/R_small)."""
+    (x' = cos phi, y' = sin phi, phi' = cos phi / y - P, lengths / R1): max and min of phi [rad], where
+    max |phi| lies (arc-length fraction, 0: solid 1's contact line, 1: solid 2's), the smallest clearance
+    to solid 1 and to solid 2 (/R_small; negative: the profile cuts into the solid), and the mismatch of
+    the end point with the solver's contact line on solid 2 (/R_small)."""
     r2 = R2 / R1
     a = sol["gap"] / R1
     P = sol["pressure"] * R1 / GAMMA
