@@ -1,5 +1,5 @@
 """Helpers of the studies whose scripts are in scripts/ (the cause analysis of the shear-cell results, the
-accuracy of the models, unequal contact angles); not part of the yade_capillary package. A script finds
+accuracy of the models, unequal contact angles, the exact solver's domain); not part of the yade_capillary package. A script finds
 them as `studies` next to itself: plain python3 puts the script's folder on sys.path, a script run by
 yade inserts it (sys.argv[0] is the script there).
 
@@ -13,4 +13,5 @@ Modules:
     cell_report   -- a Markdown and CSV comparison of analysed runs with Gladkyy 2014
     accuracy      -- error and cost of every model against the Young-Laplace solver
     mixedangles   -- unequal contact angles: mean of cosines vs cosine of the mean angle, against the solver
+    bridgedomain  -- the largest volume the Young-Laplace solver follows from contact to rupture, and why
 """
