@@ -338,6 +338,12 @@ namespace yl {
 				ds /= 2; // a sharp turn means a jump to another branch: smaller steps
 				continue;
 			}
+			if (branch_.size() == 1 && next.a < last.a && t[0] < 0) {
+				// The first step must stretch the bridge. Where the filling angle on solid 1 grows as the gap opens (the less
+				// wetting solid first, at large volumes), decreasing it leads to negative gaps: the other way.
+				t = { 1, 0, 0, 0 };
+				continue;
+			}
 			if (next.a < last.a && ds > 1e-3) { // passed the fold: approach it with smaller steps first
 				ds /= 4;
 				continue;

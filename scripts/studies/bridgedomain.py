@@ -10,7 +10,7 @@ volume matches the input and whose neck and contact-line forces agree (``VOLUME_
 
 Two spheres are computed in both orders, the small one as solid 1 and as solid 2, which should give
 the same limit (the solver scales every length by R1, so the two orders take different numerical
-paths; where one stops on a negative rupture gap they do not). A wall can only be solid 2 (R1 must be finite).
+paths; a negative rupture gap in one order only would be a failure of the continuation). A wall can only be solid 2 (R1 must be finite).
 
 At the last solved volume the meniscus is integrated again here, in arc length from the contact
 line on solid 1 with the pressure the solver returns (``meniscus``), to report what ends the domain:
