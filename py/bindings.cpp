@@ -198,14 +198,18 @@ PYBIND11_MODULE(_kernels, m)
 
 	m.def("table_axes", [] {
 		py::dict d;
-		py::list lnv, theta, rho, tau;
+		py::list lnv, theta_s, rho, theta_l, tau;
 		for (int i = 0; i < yltable::n_lnv; ++i) lnv.append(yltable::lnv_node(i));
-		for (int i = 0; i < yltable::n_theta; ++i) theta.append(yltable::theta_node(i));
+		for (int j = 0; j < yltable::n_ts; ++j) theta_s.append(yltable::theta_s_node(j));
 		for (double r : yltable::rho_nodes) rho.append(r);
+		for (int m = 0; m < yltable::n_tl; ++m) theta_l.append(yltable::lobatto(m, yltable::n_tl));
 		for (int i = 0; i < yltable::n_w; ++i) tau.append(yltable::tau_node(i));
-		d["ln_vstar"] = lnv, d["theta"] = theta, d["rho"] = rho, d["tau"] = tau;
+		d["ln_vstar"] = lnv, d["rho"] = rho, d["theta_s"] = theta_s, d["theta_l_x"] = theta_l, d["tau"] = tau;
+		d["theta_max"] = yltable::theta_max, d["theta_top"] = yltable::theta_top;
 		return d;
-	}, "Nodes of the young_laplace_table model: ln_vstar (V* = V/Rh^3), theta [rad], rho = R_small/R_large (0: plane), "
+	}, "Nodes of the young_laplace_table model: ln_vstar (V* = V/Rh^3), rho = R_small/R_large (0: plane), theta_s [rad] "
+	   "(the contact angle on the smaller sphere, Chebyshev nodes on [0, theta_max]), theta_l_x (Chebyshev nodes x in [0, 1] "
+	   "of s = cbrt(theta_l - c) from theta_l = 0 to theta_top, c the row's ridge in data/young_laplace_table_rows.csv), "
 	   "tau = 1 - sqrt(1 - sqrt(1 - a/a_rupture)).");
 
 	m.def("willett_coefficients", &willett_coefficients, py::arg("vstar"), py::arg("theta"),
@@ -285,9 +289,9 @@ PYBIND11_MODULE(_kernels, m)
 	        [](double R1, double R2, double volume, double theta1, std::optional<double> theta2) { return exact_transfer(R1, R2, volume, theta1, theta2.value_or(theta1)); },
 	        py::arg("R1"), py::arg("R2"), py::arg("volume"), py::arg("theta1") = 0.0, py::arg("theta2") = py::none(),
 	      "The exact transfer ratio T1 [-]: the share of a bridge's liquid on solid 1's side of the neck at the exact rupture "
-	      "(Young-Laplace solver), interpolated in data/transfer_table.csv. R1, R2 [m] (R2 = inf: a plane), volume [m^3], equal "
-	      "contact angles [rad]. Raises ValueError outside the table (V* = V/Rh^3 in [1e-5, 0.1], theta <= 50 deg, "
-	      "R_small/R_large >= 1/4 or a plane).");
+	      "(Young-Laplace solver), interpolated in young_laplace_table's data. R1, R2 [m] (R2 = inf: a plane), volume [m^3], "
+	      "contact angles theta1 on solid 1 and theta2 on solid 2 [rad] (theta2 = None: equal). Raises ValueError outside the "
+	      "table (V* = V/Rh^3 in [1e-5, 0.5], each angle <= 70 deg, R_small/R_large >= 1/4 or a plane).");
 	m.def(
 	        "transfer_ratio",
 	        [](const std::string& rule, double R1, double R2, double volume, double S, double theta1, std::optional<double> theta2) {

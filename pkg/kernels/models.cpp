@@ -247,6 +247,18 @@ YoungLaplaceTable YoungLaplaceTable::make(const BridgeSpec&, const Pair& p, doub
 {
 	// The exact rupture distance of the solver, whatever the rupture rule.
 	const yltable::Curve c = yltable::curve(p.R1, p.R2, p.volume, p.gamma, p.theta1, p.theta2);
+	// The evaluated form is 1/F: the table holds attractive bridges. At V* above about 0.3 with both
+	// angles near 70 deg the exact force turns repulsive somewhere between contact and rupture; a
+	// force below 1e-3 of the bridge's largest counts as turning (1/F between the nodes could cross 0).
+	double g_max = c.g[0];
+	for (double g : c.g) g_max = std::max(g_max, g);
+	const double g_min = std::asinh(1e-3 * std::sinh(g_max));
+	for (int m = 0; m < yltable::n_w; ++m)
+		if (!(c.g[m] > g_min))
+			throw std::invalid_argument("young_laplace_table: the exact force of this bridge (V* = V/Rh^3 = " + format_value(p.vstar) + ", theta1 = "
+			                            + format_value(p.theta1) + " rad, theta2 = " + format_value(p.theta2) + " rad) turns repulsive at a/a_rupture = "
+			                            + format_value(yltable::gap_fraction(yltable::tau_node(m))) + " (F = "
+			                            + format_value(c.scale * yltable::force_delta * std::sinh(c.g[m])) + " N); the table holds attractive bridges only (a force above 1e-3 of its largest from contact to rupture)");
 	auto                 k = std::make_shared<Coefficients>();
 	yltable::coefficients(c, k->data());
 	rupture = c.rupture;

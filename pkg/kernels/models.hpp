@@ -246,8 +246,8 @@ struct LinearIrreversible { // Roy et al. eq. (16), (17), calibration of their s
 };
 
 struct YoungLaplaceTable { // exact Young-Laplace bridge, tabulated (young_laplace_table.hpp)
-	static constexpr const char* reference = "Young-Laplace solver, tabulated (data/young_laplace_table.csv)";
-	static constexpr Domain domain    = { 1e-5, 0.1, yltable::theta_max, 4, true, true, "the table's nodes (data/young_laplace_table.csv)" };
+	static constexpr const char* reference = "Young-Laplace solver, tabulated (data/young_laplace_table.bin)";
+	static constexpr Domain domain    = { 1e-5, 0.5, yltable::theta_max, 4, true, false, "the table's nodes (young_laplace_table.hpp)" };
 	// Not monotone: at large contact angles the exact force first grows slightly with the gap.
 	static constexpr bool monotone = false, own_rupture = true, needs_linear = false;
 	using Coefficients            = std::array<double, yltable::n_coefficients>;

@@ -132,7 +132,7 @@ namespace capillary {
 
 namespace {
 	const std::array<TransferInfo, 3> transfer_table = { {
-	        { Transfer::exact, "exact", "Young-Laplace solver: the split at the neck at the exact rupture, tabulated (data/transfer_table.csv)" },
+	        { Transfer::exact, "exact", "Young-Laplace solver: the split at the neck at the exact rupture, tabulated in young_laplace_table" },
 	        { Transfer::parabolic, "parabolic", "Elskamp2018 eq. 35-43 (parabolic meniscus at the rupture distance)" },
 	        { Transfer::diameter, "diameter", "Richefeu2008: in proportion to the diameters" },
 	} };

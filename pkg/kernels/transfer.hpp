@@ -10,9 +10,8 @@
 //   diameter_transfer   Richefeu2008: in proportion to the diameters, T1 = R1/(R1 + R2) (a wall, which
 //                       has no diameter, gets nothing).
 //   exact_transfer      the Young-Laplace solver's split at the neck at the exact rupture gap
-//                       (yl::Solution::volume1 / volume there), tabulated on the nodes of
-//                       young_laplace_table (data/transfer_table.csv, tools/generate_transfer_table.cpp)
-//                       and interpolated like it.
+//                       (yl::Solution::volume1 / volume there), a column of young_laplace_table
+//                       (young_laplace_table.hpp), interpolated like its forces.
 //
 // Deviations from the printed equations: eq. (40) is printed with + atan(y'(d_lb)); the mirror image
 // of eq. (39) for the solid on the right is theta_j = pi/2 - atan(Y'(d_lb)) - asin(y(d_lb)/r_j) (with

@@ -6,21 +6,43 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+// The tables: data/young_laplace_table_rows.csv (compiled in as text) and data/young_laplace_table.bin
+// (float32, embedded by young_laplace_table_data.S).
+extern "C" const float capillary_yltable_values[];
+extern "C" const char  capillary_yltable_values_end[];
 
 namespace capillary {
 namespace yltable {
 
 	namespace {
 
-		constexpr int    row_len = 4 + n_w; // ln_vstar, theta, rho, ln(a_r/Rh), ln(F/(2 pi Rh gamma)) at the tau nodes
-
-		const double table[] = {
-#include "young_laplace_table_data.inc"
+		constexpr int row_meta_len = 5; // ln_vstar, rho, theta_s_rad, ridge_rad, center_rad
+		const double  rows_meta[] = {
+#include "young_laplace_table_rows.inc"
 		};
-		static_assert(sizeof(table) / sizeof(double) == size_t(n_lnv) * n_theta * n_rho * row_len,
-		              "data/young_laplace_table.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.cpp)");
+		static_assert(sizeof(rows_meta) / sizeof(double) == size_t(n_rows) * row_meta_len,
+		              "data/young_laplace_table_rows.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.cpp)");
+		constexpr size_t row_floats = size_t(n_tl) * n_values;
 
-		const double* row(int i, int j, int k) { return node_row(table, row_len, i, j, k); }
+		// Once: the rows' nodes against the axes, and the size of the values.
+		void check_tables()
+		{
+			const char* file = "data/young_laplace_table_rows.csv";
+			for (int i = 0; i < n_lnv; ++i)
+				for (int k = 0; k < n_rho; ++k)
+					for (int j = 0; j < n_ts; ++j) {
+						const double* r = rows_meta + size_t(row_index(i, k, j)) * row_meta_len;
+						if (std::abs(r[0] - lnv_node(i)) > 1e-12 || std::abs(r[1] - rho_nodes[k]) > 1e-12 || std::abs(r[2] - theta_s_node(j)) > 1e-12
+						    || std::abs(r[4] - center_of(r[3])) > 1e-12)
+							throw std::logic_error(std::string(file) + ": node mismatch; regenerate the table");
+					}
+			const size_t bytes = size_t(capillary_yltable_values_end - reinterpret_cast<const char*>(capillary_yltable_values));
+			if (bytes != n_rows * row_floats * sizeof(float))
+				throw std::logic_error("data/young_laplace_table.bin holds " + std::to_string(bytes) + " bytes, not "
+				                       + std::to_string(n_rows * row_floats * sizeof(float)) + "; regenerate the table");
+		}
 
 		// 4-point Lagrange weights for x on the nodes xs[0..3].
 		void lagrange(const double* xs, double x, double* w)
@@ -38,82 +60,142 @@ namespace yltable {
 			while (i + 1 < first + count && nodes[i + 1] <= x) ++i;
 			return std::clamp(i - 1, first, first + count - 4);
 		}
+		// Barycentric weights of the n Chebyshev-Lobatto points on [0, 1] at x (Berrut & Trefethen 2004).
+		template <int n> std::array<double, n> lobatto_weights(double x)
+		{
+			std::array<double, n> w {};
+			double                sum = 0;
+			for (int m = 0; m < n; ++m) {
+				const double d = x - lobatto(m, n);
+				if (d == 0) {
+					w.fill(0), w[m] = 1;
+					return w;
+				}
+				w[m] = ((m % 2) ? -1.0 : 1.0) * ((m == 0 || m == n - 1) ? 0.5 : 1.0) / d;
+				sum += w[m];
+			}
+			for (double& v : w) v /= sum;
+			return w;
+		}
 
 	} // namespace
 
-	void check_nodes(const double* table, int row_len, const char* file)
-	{
-		for (int i = 0; i < n_lnv; ++i)
-			for (int j = 0; j < n_theta; ++j)
-				for (int k = 0; k < n_rho; ++k) {
-					const double* r = node_row(table, row_len, i, j, k);
-					if (std::abs(r[0] - lnv_node(i)) > 1e-12 || std::abs(r[1] - theta_node(j)) > 1e-12 || std::abs(r[2] - rho_nodes[k]) > 1e-12)
-						throw std::logic_error(std::string(file) + ": node mismatch; regenerate the table");
-				}
-	}
-
-	Stencil locate(const char* table, double R1, double R2, double volume, double theta1, double theta2)
-	{
-		const auto outside = [table](const std::string& what) {
-			throw std::invalid_argument(std::string(table) + ": " + what + "; the exact solver (YoungLaplaceBridge) has no such limit");
+	namespace {
+		// The values [q0, q1) of one bridge's node vector, interpolated; Rh [m] and which solid is "small".
+		struct Interpolated {
+			std::array<double, n_values> v {};
+			double                       Rh = 0;
+			bool                         small_first = true;
 		};
-		const bool   plane = is_wall(R2);
-		const double rs = plane ? R1 : std::min(R1, R2), rl = plane ? R1 : std::max(R1, R2);
-		const double rho = plane ? 0 : rs / rl;
-		double       r1, r2;
-		equivalent_pair(R1, R2, r1, r2);
-		Stencil s;
-		s.Rh              = harmonic_mean_radius(r1, r2);
-		s.small_first     = plane || R1 <= R2;
-		const double lnv = std::log(volume / (s.Rh * s.Rh * s.Rh));
-		if (!(std::abs(theta1 - theta2) <= 1e-12)) outside("theta1 = " + format_value(theta1) + " and theta2 = " + format_value(theta2) + " rad differ; the table holds equal contact angles");
-		if (!(lnv >= lnv_min - 1e-12 && lnv <= lnv_max + 1e-12))
-			outside("V* = V/Rh^3 = " + format_value(std::exp(lnv)) + " is outside the table's range [1e-5, 0.1]");
-		if (!(theta1 >= 0 && theta1 <= theta_max + 1e-12)) outside("theta = " + format_value(theta1) + " rad is outside the table's range [0, " + format_value(theta_max) + "] rad (50 deg)");
-		if (!(plane || rho >= rho_nodes[1] - 1e-12))
-			outside("R_small/R_large = " + format_value(rho) + " is outside the table's range [1/4, 1] (or a plane)");
-
-		std::array<double, n_lnv>   lnvs;
-		std::array<double, n_theta> thetas;
-		for (int i = 0; i < n_lnv; ++i) lnvs[i] = lnv_node(i);
-		for (int i = 0; i < n_theta; ++i) thetas[i] = theta_node(i);
-		s.i0 = stencil(lnvs.data(), 0, n_lnv, lnv), s.j0 = stencil(thetas.data(), 0, n_theta, theta1);
-		lagrange(&lnvs[s.i0], lnv, s.wv);
-		lagrange(&thetas[s.j0], theta1, s.wt);
-		// A plane uses its own slice; spheres interpolate over rho in [1/4, 1], in sqrt(1 - rho).
-		if (!plane) {
-			double xs[4];
-			s.k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), s.nk = 4;
-			for (int c = 0; c < 4; ++c) xs[c] = std::sqrt(1 - rho_nodes[s.k0 + c]);
-			lagrange(xs, std::sqrt(std::max(0.0, 1 - rho)), s.wr);
+		// The transfer column alone, row after row (n_tl floats a row): read by every film bridge that
+		// breaks, so a call touches 240 short rows instead of 240 x 25 strided values.
+		const float* transfer_column()
+		{
+			static const std::vector<float> column = [] {
+				std::vector<float> c(size_t(n_rows) * n_tl);
+				for (size_t r = 0; r < size_t(n_rows); ++r)
+					for (int m = 0; m < n_tl; ++m) c[r * n_tl + m] = capillary_yltable_values[r * row_floats + size_t(m) * n_values + 1];
+				return c;
+			}();
+			return column.data();
 		}
-		return s;
+
+		// column: null for the whole table; else one value per node, row after row (interpolated into v[q0]).
+		Interpolated interpolate(double R1, double R2, double volume, double theta1, double theta2, const char* who, int q0, int q1,
+		                         const float* column = nullptr)
+		{
+			static const bool checked = (check_tables(), true);
+			(void)checked;
+			const auto outside = [who](const std::string& what) {
+				throw std::invalid_argument(std::string(who) + ": " + what + "; the exact solver (YoungLaplaceBridge) has no such limit");
+			};
+			const bool   plane = is_wall(R2);
+			const double rs = plane ? R1 : std::min(R1, R2), rl = plane ? R1 : std::max(R1, R2);
+			const double rho = plane ? 0 : rs / rl;
+			double       r1, r2;
+			equivalent_pair(R1, R2, r1, r2);
+			Interpolated out;
+			out.Rh = harmonic_mean_radius(r1, r2);
+			// Equal spheres: the solid of the smaller angle counts as "small", so that both orders read one point.
+			out.small_first  = plane || R1 < R2 || (R1 == R2 && theta1 <= theta2);
+			const double lnv = std::log(volume / (out.Rh * out.Rh * out.Rh));
+			if (!(lnv >= lnv_min - 1e-12 && lnv <= lnv_max + 1e-12))
+				outside("V* = V/Rh^3 = " + format_value(std::exp(lnv)) + " is outside the table's range [1e-5, 0.5]");
+			for (const auto& [name, theta] : { std::pair<const char*, double> { "theta1", theta1 }, { "theta2", theta2 } })
+				if (!(theta >= 0 && theta <= theta_max + 1e-12))
+					outside(std::string(name) + " = " + format_value(theta) + " rad is outside the table's range [0, " + format_value(theta_max) + "] rad (70 deg)");
+			if (!(plane || rho >= rho_nodes[1] - 1e-12)) outside("R_small/R_large = " + format_value(rho) + " is outside the table's range [1/4, 1] (or a plane)");
+			const double ts = std::min(out.small_first ? theta1 : theta2, theta_max), tl = std::min(out.small_first ? theta2 : theta1, theta_max);
+
+			// Stencils: cubic in ln V* and rho (a plane has its own slice), all Chebyshev nodes in theta_s.
+			std::array<double, n_lnv> lnvs;
+			for (int i = 0; i < n_lnv; ++i) lnvs[i] = lnv_node(i);
+			const int i0 = stencil(lnvs.data(), 0, n_lnv, lnv);
+			double    wv[4], wr[4] = { 1, 0, 0, 0 };
+			lagrange(&lnvs[i0], lnv, wv);
+			int k0 = 0, nk = 1;
+			if (!plane) {
+				k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), nk = 4;
+				lagrange(&rho_nodes[k0], rho, wr);
+			}
+			const auto wt         = lobatto_weights<n_ts>(ts / theta_max);
+			const auto row_weight = [&](int a, int c, int j) { return wv[a] * wr[c] * wt[j]; };
+
+			// The centre of s at this bridge, then its place among the theta_l nodes.
+			double center = 0;
+			for (int a = 0; a < 4; ++a)
+				for (int c = 0; c < nk; ++c)
+					for (int j = 0; j < n_ts; ++j) center += row_weight(a, c, j) * rows_meta[size_t(row_index(i0 + a, k0 + c, j)) * row_meta_len + 4];
+			const auto wl = lobatto_weights<n_tl>(x_of(tl, center));
+
+			for (int a = 0; a < 4; ++a)
+				for (int c = 0; c < nk; ++c)
+					for (int j = 0; j < n_ts; ++j) {
+						const size_t                 r = size_t(row_index(i0 + a, k0 + c, j));
+						std::array<double, n_values> along {}; // the row at this theta_l
+						if (column)
+							for (int m = 0; m < n_tl; ++m) along[q0] += wl[m] * column[r * n_tl + m];
+						else
+							for (int m = 0; m < n_tl; ++m)
+								for (int q = q0; q < q1; ++q) along[q] += wl[m] * capillary_yltable_values[r * row_floats + size_t(m) * n_values + q];
+						const double w = row_weight(a, c, j);
+						for (int q = q0; q < q1; ++q) out.v[q] += w * along[q];
+					}
+			return out;
+		}
+	} // namespace
+
+	Curve curve(double R1, double R2, double volume, double gamma, double theta1, double theta2, const char* who)
+	{
+		const Interpolated in = interpolate(R1, R2, volume, theta1, theta2, who, 0, n_values);
+		Curve              out;
+		out.rupture        = in.Rh * std::exp(in.v[0]);
+		const double small = std::fmin(1.0, std::fmax(0.0, in.v[1])); // a share; the interpolation stays well inside (0, 1)
+		out.transfer1      = in.small_first ? small : 1 - small;
+		out.scale          = 2 * pi * in.Rh * gamma;
+		for (int m = 0; m < n_w; ++m) out.g[m] = in.v[2 + m];
+		return out;
 	}
 
-	Curve curve(double R1, double R2, double volume, double gamma, double theta1, double theta2)
+	double transfer1(double R1, double R2, double volume, double theta1, double theta2, const char* who)
 	{
-		static const bool nodes_ok = (check_nodes(table, row_len, "data/young_laplace_table.csv"), true); // once
-		(void)nodes_ok;
-		const Stencil               s = locate("young_laplace_table", R1, R2, volume, theta1, theta2);
-		std::array<double, row_len> v {};
-		for_each_node(s, [&v](double weight, int i, int j, int k) {
-			const double* r = row(i, j, k);
-			for (int m = 3; m < row_len; ++m) v[m] += weight * r[m];
-		});
-		Curve out;
-		out.rupture = s.Rh * std::exp(v[3]);
-		for (int m = 0; m < n_w; ++m) out.force[m] = 2 * pi * s.Rh * gamma * std::exp(v[4 + m]);
-		return out;
+		const Interpolated in    = interpolate(R1, R2, volume, theta1, theta2, who, 1, 2, transfer_column());
+		const double       small = std::fmin(1.0, std::fmax(0.0, in.v[1]));
+		return in.small_first ? small : 1 - small;
 	}
 
 	double curve_force(const Curve& c, double a)
 	{
-		const double* f  = c.force.data();
-		const double  t  = (1 - std::sqrt(1 - std::sqrt(std::max(0.0, 1 - a / c.rupture)))) * (n_w - 1);
-		const int    i0 = std::clamp(int(t) - 1, 0, n_w - 4);
-		const double s  = t - i0;
-		const double s1 = s - 1, s2 = s - 2, s3 = s - 3;
-		return (-s1 * s2 * s3 * f[i0] + 3 * s * s2 * s3 * f[i0 + 1] - 3 * s * s1 * s3 * f[i0 + 2] + s * s1 * s2 * f[i0 + 3]) / 6;
+		const double t  = (1 - std::sqrt(1 - std::sqrt(std::max(0.0, 1 - a / c.rupture)))) * (n_w - 1);
+		const int    i0 = std::clamp(int(t) - 2, 0, n_w - 6);
+		double       g  = 0;
+		for (int p = 0; p < 6; ++p) {
+			double w = 1;
+			for (int q = 0; q < 6; ++q)
+				if (q != p) w *= (t - (i0 + q)) / double(p - q);
+			g += w * c.g[i0 + p];
+		}
+		return c.scale * force_delta * std::sinh(g);
 	}
 
 	void coefficients(const Curve& c, double* k)

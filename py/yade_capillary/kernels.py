@@ -28,7 +28,7 @@ Viscous bridge forces (Elskamp 2018 eq. 25-29, 33; PendularMat.eta in YADE):
 
 Where the liquid of a breaking bridge goes (the transfer ratio to solid 1): exactly, the solver's
 ``YoungLaplaceBridge(...).solve(rupture_gap, gamma)["volume1"] / volume``, tabulated as
-``exact_transfer(R1, R2, volume, theta)``; Elskamp 2018's parabolic bridge
+``exact_transfer(R1, R2, volume, theta1, theta2)``; Elskamp 2018's parabolic bridge
 ``parabolic_transfer(R1, R2, volume, S, theta1, theta2)``; Richefeu 2008's ``diameter_transfer(R1, R2)``;
 ``transfer_ratio(rule, ...)`` by name (``TRANSFER_NAMES``, PendularMat.transfer in YADE).
 

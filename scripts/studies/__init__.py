@@ -14,4 +14,6 @@ Modules:
     accuracy      -- error and cost of every model against the Young-Laplace solver
     mixedangles   -- unequal contact angles: mean of cosines vs cosine of the mean angle, against the solver
     bridgedomain  -- the largest volume the Young-Laplace solver follows from contact to rupture, and why
+    closedformerrors -- every closed-form model and rupture rule against the exact bridge beyond their range
+    tableaccuracy -- young_laplace_table against the Young-Laplace solver over its whole domain
 """

@@ -13,7 +13,7 @@ The forms are emulated with the existing kernels by equal angles theta = theta2 
 * ``mean_cos``:   theta_eff = acos((cos theta1 + cos theta2) / 2)  (Elskamp 2018 eq. 14, 15)
 * ``mean_angle``: theta_eff = (theta1 + theta2) / 2                (the kernels before)
 * ``native``:     the kernels called with theta, theta2 as given (F(0) equals ``mean_cos``; the
-  rupture distance is that of the mean angle; the tabulated model refuses unequal angles)
+  rupture distance is that of the mean angle; the tabulated model is the exact bridge)
 
 Besides every kernel model (except linear_irreversible, a calibrated law), the pseudo-model
 ``young_laplace_equal`` is the exact solver itself with the equal angle theta_eff: it isolates the

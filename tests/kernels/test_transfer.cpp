@@ -85,28 +85,38 @@ TEST(Transfer, ExactTableAgainstSolver)
 	};
 	double worst = 0;
 	for (const Row& r : { Row { 1e-3, 1e-3, 3e-4, 0.2 }, Row { 1e-3, 2.7e-3, 2e-3, 0.05 }, Row { 3.1e-3, 1e-3, 4e-5, 0.61 }, Row { 1e-3, 1.3e-3, 0.07, 0.4 },
-	                      Row { 1e-3, inf, 5e-4, 0.3 }, Row { 2e-3, inf, 0.02, 0.0 }, Row { 1e-3, 3.9e-3, 1.5e-5, 0.8 } }) {
+	                      Row { 1e-3, inf, 5e-4, 0.3 }, Row { 2e-3, inf, 0.02, 0.0 }, Row { 1e-3, 3.9e-3, 1.5e-5, 0.8 }, Row { 1e-3, 2e-3, 0.4, 1.1 },
+	                      Row { 1e-3, inf, 0.3, 1.2 } }) {
 		const double Rh = is_wall(r.R2) ? 2 * r.R1 : harmonic_mean_radius(r.R1, r.R2), V = r.vstar * Rh * Rh * Rh;
 		const yl::Bridge   b(r.R1, r.R2, V, r.theta);
 		const yl::Solution s = b.solve(b.rupture_gap(), 0.07);
 		const double       exact = s.volume1 / s.volume, table = exact_transfer(r.R1, r.R2, V, r.theta, r.theta);
 		worst = std::max(worst, std::abs(table - exact));
-		EXPECT_NEAR(table, exact, 2e-4) << r.R1 << " " << r.R2 << " " << r.vstar << " " << r.theta;
+		EXPECT_NEAR(table, exact, 5e-3) << r.R1 << " " << r.R2 << " " << r.vstar << " " << r.theta; // measured 2.1e-3
 		if (!is_wall(r.R2) && r.R1 != r.R2) EXPECT_NEAR(exact_transfer(r.R2, r.R1, V, r.theta, r.theta), 1 - table, 1e-15);
-		if (r.R1 == r.R2) EXPECT_NEAR(table, 0.5, 1e-6);
+		if (r.R1 == r.R2) EXPECT_EQ(table, 0.5); // a symmetric bridge
 	}
 	std::printf("exact transfer table: largest deviation from the solver %.2e\n", worst);
 	// Elskamp2018 Fig. 7 trends: the larger sphere gets more, and more so as V* rises.
 	const double R = 1e-3, Rh = harmonic_mean_radius(R, 2 * R);
 	double       last = 1;
-	for (double vstar : { 1e-5, 1e-4, 1e-3, 1e-2, 0.1 }) {
+	for (double vstar : { 1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.5 }) {
 		const double small = exact_transfer(R, 2 * R, vstar * Rh * Rh * Rh, 0.3, 0.3);
 		EXPECT_LT(small, 0.5);
 		EXPECT_LT(small, last);
 		last = small;
 	}
-	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 1e-9, 0.2, 0.3), std::invalid_argument); // unequal angles
-	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 1e-6, 0.2, 0.2), std::invalid_argument); // V* = 0.125 > 0.1
+	// Unequal angles (Elskamp's glass 15 deg on steel 45 deg) against the solver, in both orders: within
+	// 1.5e-2 (measured 9.3e-3; near the ridge of the rupture the share varies like cbrt(theta_l - c)).
+	for (double vstar : { 1e-4, 0.12, 0.45 }) {
+		const double       R1 = 1e-3, R2 = 1.5e-3, t1 = 15 * pi / 180, t2 = 45 * pi / 180, V = vstar * std::pow(harmonic_mean_radius(R1, R2), 3);
+		const yl::Bridge   b(R1, R2, V, t1, t2, 1e-10);
+		const yl::Solution s = b.solve(b.rupture_gap(), 0.07);
+		EXPECT_NEAR(exact_transfer(R1, R2, V, t1, t2), s.volume1 / s.volume, 1.5e-2) << vstar;
+		EXPECT_NEAR(exact_transfer(R2, R1, V, t2, t1), s.volume2 / s.volume, 1.5e-2) << vstar;
+	}
+	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 1e-11, 0.2, 1.3), std::invalid_argument); // 74 deg > 70 deg (V* = 0.01)
+	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 0.6e-9, 0.2, 0.2), std::invalid_argument); // V* = 0.6 > 0.5
 	EXPECT_THROW(transfer_from_name("half"), std::invalid_argument);
 	EXPECT_EQ(transfer_ratio(Transfer::diameter, 1e-3, 3e-3, 1e-12, 1e-4, 0, 0), 0.25);
 }

@@ -182,49 +182,154 @@ TEST(YoungLaplace, ClearErrors)
 	EXPECT_THROW(b.solve(-1e-9, 0.02), std::invalid_argument);
 }
 
-// young_laplace_table against the solver on seeded random points that are not table nodes,
-// over its whole domain: V* in [1e-5, 0.1], theta in [0, 50 deg], R_large/R_small in [1, 4] or a
-// plane, every gap up to rupture. Target (issue): 0.5 %.
+// A seeded random bridge of young_laplace_table's domain: V* = V/Rh^3 log-uniform in [1e-5, 0.5],
+// theta1, theta2 independently in [0, 70 deg], R_large/R_small in [1, 4] in either order, or a plane.
+struct TableCase {
+	double R1, R2, volume, theta1, theta2, vstar;
+};
+TableCase table_case(std::mt19937_64& rng, bool plane)
+{
+	std::uniform_real_distribution<double> U(0, 1);
+	const double vstar = std::exp(std::log(1e-5) + U(rng) * std::log(0.5 / 1e-5));
+	const double t1 = U(rng) * yltable::theta_max, t2 = U(rng) * yltable::theta_max;
+	double       R1 = 1e-3, R2 = plane ? inf : 1e-3 * (1 + 3 * U(rng));
+	if (!plane && U(rng) < 0.5) std::swap(R1, R2);
+	const double Rh = plane ? 2 * R1 : harmonic_mean_radius(R1, R2);
+	return { R1, R2, vstar * Rh * Rh * Rh, t1, t2, vstar };
+}
+// Whether the table refuses the bridge as (nearly) repulsive; if so, the solver must agree: its force
+// somewhere between contact and rupture below 2e-3 of its largest (the table refuses below 1e-3).
+bool refused_as_repulsive(const TableCase& c)
+{
+	const yltable::Curve t = yltable::curve(c.R1, c.R2, c.volume, 0.03, c.theta1, c.theta2);
+	double               g_max = t.g[0], g_min = t.g[0];
+	for (double g : t.g) g_max = std::max(g_max, g), g_min = std::min(g_min, g);
+	if (std::sinh(g_min) > 1e-3 * std::sinh(g_max)) return false;
+	const yl::Bridge ex(c.R1, c.R2, c.volume, c.theta1, c.theta2, 1e-10);
+	double           f_max = 0, f_min = 1e300;
+	for (int j = 0; j <= 20; ++j) {
+		const double f = ex.solve(ex.rupture_gap() * j / 20, 0.03).force_neck;
+		f_max = std::max(f_max, f), f_min = std::min(f_min, f);
+	}
+	EXPECT_LT(f_min, 2e-3 * f_max) << "refused as repulsive, but the solver's force stays above 2e-3 of its largest: V=" << c.volume;
+	return true;
+}
+BridgeSpec table_spec(const TableCase& c)
+{
+	BridgeSpec s;
+	s.R1 = c.R1, s.R2 = c.R2, s.volume = c.volume, s.gamma = 0.03, s.theta1 = c.theta1, s.theta2 = c.theta2, s.model = Model::young_laplace_table;
+	return s;
+}
+
+// young_laplace_table against the solver on seeded random points that are not table nodes, over its
+// whole domain, at random gaps up to rupture. scripts/young_laplace_table_accuracy.py measured over
+// 2000 bridges x 5 gaps (docs/models.md): force median 1.5e-5, 95th percentile 1.3e-4, worst 3.7e-2
+// (near contact at V* > 0.3); rupture 1.3e-5, 1.8e-4, 2.8e-3 (walls at large angles, where the ridge
+// lies beyond the tabulated angles). Here: 9 points in 10 within 5e-4, none beyond 5e-2 (force) and
+// 5e-3 (rupture).
 TEST(YoungLaplaceTable, MatchesSolverOnRandomPoints)
 {
 	std::mt19937_64                        rng(20261122);
 	std::uniform_real_distribution<double> U(0, 1);
 	double                                 worst = 0, worst_rupture = 0;
+	int                                    repulsive = 0, points = 0, within = 0;
 	for (int i = 0; i < 60; ++i) {
-		const double vstar = std::exp(std::log(1e-5) + U(rng) * std::log(1e4)), theta = U(rng) * 50 * pi / 180;
-		const bool   plane = i % 6 == 0;
-		const double R1 = 1e-3, R2 = plane ? inf : R1 * (1 + 3 * U(rng)), Rh = plane ? 2 * R1 : 2 * R1 * R2 / (R1 + R2);
-		BridgeSpec s;
-		s.R1 = R1, s.R2 = R2, s.volume = vstar * Rh * Rh * Rh, s.gamma = 0.03, s.theta1 = s.theta2 = theta, s.model = Model::young_laplace_table;
-		const Bridge     tb = make_bridge(s);
-		const yl::Bridge ex(R1, R2, s.volume, theta);
-		worst_rupture = std::max(worst_rupture, rel(tb.rupture, ex.rupture_gap()));
+		const TableCase c = table_case(rng, i % 5 == 0);
+		if (refused_as_repulsive(c)) {
+			++repulsive;
+			EXPECT_THROW(make_bridge(table_spec(c)), std::invalid_argument);
+			continue;
+		}
+		const Bridge     tb = make_bridge(table_spec(c));
+		const yl::Bridge ex(c.R1, c.R2, c.volume, c.theta1, c.theta2, 1e-10);
+		const double     er = rel(tb.rupture, ex.rupture_gap());
+		worst_rupture       = std::max(worst_rupture, er);
+		EXPECT_LT(er, 5e-3) << "V=" << c.volume << " theta=" << c.theta1 << "/" << c.theta2 << " R=" << c.R1 << "/" << c.R2;
+		++points, within += er < 5e-4;
 		for (int j = 0; j < 5; ++j) {
 			const double a = U(rng) * std::min(tb.rupture, ex.rupture_gap());
-			const double e = rel(bridge_force(tb, a), ex.solve(a, s.gamma).force_neck);
+			const double e = rel(bridge_force(tb, a), ex.solve(a, 0.03).force_neck);
 			worst          = std::max(worst, e);
-			EXPECT_LT(e, 5e-3) << "V*=" << vstar << " theta=" << theta << " R2=" << R2 << " a/a_r=" << a / ex.rupture_gap();
+			EXPECT_LT(e, 5e-2) << "V=" << c.volume << " theta=" << c.theta1 << "/" << c.theta2 << " R=" << c.R1 << "/" << c.R2 << " a/a_r=" << a / ex.rupture_gap();
+			++points, within += e < 5e-4;
 		}
 	}
-	std::printf("young_laplace_table: worst force error %.3e, worst rupture error %.3e over 300 random points\n", worst, worst_rupture);
-	EXPECT_LT(worst_rupture, 1e-3);
+	std::printf("young_laplace_table: worst force error %.3e, worst rupture error %.3e over 60 random bridges (%d refused as repulsive)\n", worst,
+	            worst_rupture, repulsive);
+	EXPECT_LE(repulsive, 3); // the repulsive corner (V* > 0.3, both angles near 70 deg) is small
+	EXPECT_GE(within, 0.9 * points);
+}
+
+// Exchanging the solids, (R1, theta1) with (R2, theta2), gives the same bridge: the table looks the
+// pair up by its smaller sphere (of equal spheres, the one of the smaller angle), so both orders read
+// the same nodes (to rounding).
+TEST(YoungLaplaceTable, SwappingTheSolidsSwapsTheBridge)
+{
+	std::mt19937_64 rng(11);
+	for (int i = 0; i < 40; ++i) {
+		TableCase c = table_case(rng, false);
+		if (i % 4 == 0) c.R2 = c.R1, c.volume = c.vstar * c.R1 * c.R1 * c.R1; // equal spheres, the same V*
+		const yltable::Curve a = yltable::curve(c.R1, c.R2, c.volume, 0.03, c.theta1, c.theta2);
+		const yltable::Curve b = yltable::curve(c.R2, c.R1, c.volume, 0.03, c.theta2, c.theta1);
+		const double         tol = 1e-12;
+		EXPECT_LT(rel(a.rupture, b.rupture), tol) << i;
+		EXPECT_NEAR(a.transfer1, 1 - b.transfer1, tol) << i;
+		for (int m = 0; m < yltable::n_w; ++m) EXPECT_NEAR(a.g[m], b.g[m], tol) << i << " tau node " << m;
+	}
+}
+
+// Equal angles are the ridge of the rupture distance of equal spheres: it peaks at theta2 = theta1
+// and falls like 0.5 |theta2 - theta1|^(2/3) (rad) on either side. The table follows the solver
+// across it, at 1e-4, 1e-3 and 1e-2 rad from it (rupture drops of 0.1 %, 0.5 % and 2.3 %), within
+// 1.5e-3 (measured: 8.4e-4; the ridge's place is interpolated across the table's rows).
+TEST(YoungLaplaceTable, EqualAngleLimit)
+{
+	const double R = 1e-3, Rh = R;
+	for (double vstar : { 3e-5, 2e-3, 0.3 })
+		for (double theta : { 0.45, 0.9, 1.15 })
+			for (double d : { 0.0, 1e-4, -1e-4, 1e-3, -1e-3, 1e-2, -1e-2 }) {
+				const double V = vstar * Rh * Rh * Rh;
+				if (refused_as_repulsive({ R, R, V, theta, theta + d, vstar })) continue;
+				const yltable::Curve c = yltable::curve(R, R, V, 0.03, theta, theta + d);
+				const yl::Bridge     ex(R, R, V, theta, theta + d, 1e-10);
+				EXPECT_LT(rel(c.rupture, ex.rupture_gap()), 1.5e-3) << vstar << " " << theta << " " << d;
+				EXPECT_LT(rel(yltable::curve_force(c, 0.5 * c.rupture), ex.solve(0.5 * c.rupture, 0.03).force_neck), 1.5e-3) << vstar << " " << theta << " " << d;
+			}
+}
+
+// A sphere on a wall (R2 = inf) is the table's slice rho = 0: against the solver's sphere-plane
+// bridge, with unequal angles on the sphere and the wall, within the worst of the 389 walls of
+// scripts/young_laplace_table_accuracy.py (rupture 2.8e-3, force 9.1e-3, transfer 1.6e-2) rounded up.
+TEST(YoungLaplaceTable, WallLimit)
+{
+	std::mt19937_64 rng(5);
+	for (int i = 0; i < 15; ++i) {
+		const TableCase c = table_case(rng, true);
+		if (refused_as_repulsive(c)) continue;
+		const Bridge     tb = make_bridge(table_spec(c));
+		const yl::Bridge ex(c.R1, c.R2, c.volume, c.theta1, c.theta2, 1e-10);
+		EXPECT_LT(rel(tb.rupture, ex.rupture_gap()), 3e-3) << i;
+		EXPECT_LT(rel(bridge_force(tb, 0), ex.solve(0, 0.03).force_neck), 1e-2) << i;
+		const yl::Solution at_rupture = ex.solve(ex.rupture_gap(), 0.03);
+		EXPECT_NEAR(yltable::curve(c.R1, c.R2, c.volume, 0.03, c.theta1, c.theta2).transfer1, at_rupture.volume1 / at_rupture.volume, 2e-2) << i;
+	}
 }
 
 // The evaluated form (1/F as cubic Hermite segments) reproduces the bridge's interpolated curve at
 // its nodes to 1e-7 (checks the conversion of each segment to a cubic in x; at the rupture node the
-// square root of w amplifies the rounding of a/a_rupture to ~1e-8) and within 0.3 %
-// between them (0.2 % seen over the domain when the nodes were chosen), on seeded random bridges.
+// square root of w amplifies the rounding of a/a_rupture to ~1e-8) and within 3e-3 between them
+// (1.3e-4 against the solver's own curve when the nodes were chosen; 1.4e-3 against the table's
+// curves of these bridges), on seeded random bridges.
 TEST(YoungLaplaceTable, EvaluatedFormFollowsTheCurve)
 {
-	std::mt19937_64                        rng(7);
-	std::uniform_real_distribution<double> U(0, 1);
-	std::vector<double>                    node_u(yltable::u_nodes.begin(), yltable::u_nodes.end());
+	std::mt19937_64     rng(7);
+	std::vector<double> node_u(yltable::u_nodes.begin(), yltable::u_nodes.end());
 	for (double w : yltable::w_nodes) node_u.push_back(1 - w * w);
 	double worst = 0;
 	for (int i = 0; i < 200; ++i) {
-		const double vstar = std::exp(std::log(1e-5) + U(rng) * std::log(1e4)), theta = U(rng) * 50 * pi / 180;
-		const double R1 = 1e-3, R2 = i % 6 == 0 ? inf : R1 * (1 + 3 * U(rng)), Rh = std::isinf(R2) ? 2 * R1 : 2 * R1 * R2 / (R1 + R2);
-		const yltable::Curve c = yltable::curve(R1, R2, vstar * Rh * Rh * Rh, 0.03, theta, theta);
+		const TableCase t = table_case(rng, i % 6 == 0);
+		if (refused_as_repulsive(t)) continue;
+		const yltable::Curve c = yltable::curve(t.R1, t.R2, t.volume, 0.03, t.theta1, t.theta2);
 		std::array<double, yltable::n_coefficients> k;
 		yltable::coefficients(c, k.data());
 		for (double u : node_u)
@@ -238,15 +343,32 @@ TEST(YoungLaplaceTable, EvaluatedFormFollowsTheCurve)
 	EXPECT_LT(worst, 3e-3);
 }
 
+// Beyond the domain a bridge is refused, naming the variable and its range.
 TEST(YoungLaplaceTable, OutsideItsDomainIsAnError)
 {
+	const auto refused = [](BridgeSpec s, const std::string& words) {
+		try {
+			make_bridge(s);
+			ADD_FAILURE() << "accepted; expected: " << words;
+		} catch (const std::invalid_argument& e) {
+			EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+		}
+	};
 	BridgeSpec s;
-	s.R1 = 1e-3, s.R2 = 1e-3, s.volume = 1e-9 * 0.5, s.gamma = 0.03, s.model = Model::young_laplace_table; // V* = 0.5
-	EXPECT_THROW(make_bridge(s), std::invalid_argument);
-	s.volume = 1e-11, s.theta1 = s.theta2 = 1.0; // 57 deg
-	EXPECT_THROW(make_bridge(s), std::invalid_argument);
-	s.theta1 = 0.1, s.theta2 = 0.2;
-	EXPECT_THROW(make_bridge(s), std::invalid_argument);
-	s.theta2 = 0.1, s.R2 = 5e-3; // ratio 5
-	EXPECT_THROW(make_bridge(s), std::invalid_argument);
+	s.R1 = 1e-3, s.R2 = 1e-3, s.gamma = 0.03, s.model = Model::young_laplace_table;
+	s.volume = 0.6e-9; // V* = 0.6
+	refused(s, "V* = V/R^3 = 0.6 is outside the allowed range [1e-05, 0.5]");
+	s.volume = 1e-11, s.theta1 = 0.1, s.theta2 = 1.25; // 71.6 deg
+	refused(s, "theta2 = 1.25 rad is outside the allowed range [0, 1.2217304763960306]");
+	s.theta1 = 1.3, s.theta2 = 0.1;
+	refused(s, "theta1 = 1.3 rad is outside");
+	s.theta1 = 0.1, s.R2 = 5e-3; // ratio 5
+	refused(s, "R_large/R_small = 5 is outside the allowed range [1, 4]");
+	// The table itself (the exact transfer reads it directly) names the variable likewise.
+	try {
+		yltable::curve(1e-3, 1e-3, 1e-11, 0.03, 0.1, 1.25, "exact transfer table");
+		ADD_FAILURE() << "theta2 = 1.25 accepted";
+	} catch (const std::invalid_argument& e) {
+		EXPECT_NE(std::string(e.what()).find("exact transfer table: theta2 = 1.25 rad is outside the table's range"), std::string::npos) << e.what();
+	}
 }
