@@ -25,6 +25,7 @@ namespace yltable {
 		static_assert(sizeof(rows_meta) / sizeof(double) == size_t(n_rows) * row_meta_len,
 		              "data/young_laplace_table_rows.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.cpp)");
 		constexpr size_t row_floats = size_t(n_tl) * n_values;
+		constexpr int    ts_points  = 4;
 
 		// Once: the rows' nodes against the axes, and the size of the values.
 		void check_tables()
@@ -138,19 +139,32 @@ namespace yltable {
 				k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), nk = 4;
 				lagrange(&rho_nodes[k0], rho, wr);
 			}
-			const auto wt         = lobatto_weights<n_ts>(ts / theta_max);
+			// theta_s: Lagrange on the ts_points Chebyshev nodes around it (a global fit over all 15 spreads the
+			// steep rows near 70 deg, where the force near contact approaches 0, over every theta_s).
+			std::array<double, n_ts> thetas;
+			for (int j = 0; j < n_ts; ++j) thetas[j] = theta_s_node(j);
+			int j_first = 0;
+			while (j_first + 1 < n_ts && thetas[j_first + 1] <= ts) ++j_first;
+			j_first = std::clamp(j_first - (ts_points / 2 - 1), 0, n_ts - ts_points);
+			std::array<double, n_ts> wt {};
+			for (int p = 0; p < ts_points; ++p) {
+				wt[j_first + p] = 1;
+				for (int q = 0; q < ts_points; ++q)
+					if (q != p) wt[j_first + p] *= (ts - thetas[j_first + q]) / (thetas[j_first + p] - thetas[j_first + q]);
+			}
+			const int  j_end      = j_first + ts_points;
 			const auto row_weight = [&](int a, int c, int j) { return wv[a] * wr[c] * wt[j]; };
 
 			// The centre of s at this bridge, then its place among the theta_l nodes.
 			double center = 0;
 			for (int a = 0; a < 4; ++a)
 				for (int c = 0; c < nk; ++c)
-					for (int j = 0; j < n_ts; ++j) center += row_weight(a, c, j) * rows_meta[size_t(row_index(i0 + a, k0 + c, j)) * row_meta_len + 4];
+					for (int j = j_first; j < j_end; ++j) center += row_weight(a, c, j) * rows_meta[size_t(row_index(i0 + a, k0 + c, j)) * row_meta_len + 4];
 			const auto wl = lobatto_weights<n_tl>(x_of(tl, center));
 
 			for (int a = 0; a < 4; ++a)
 				for (int c = 0; c < nk; ++c)
-					for (int j = 0; j < n_ts; ++j) {
+					for (int j = j_first; j < j_end; ++j) {
 						const size_t                 r = size_t(row_index(i0 + a, k0 + c, j));
 						std::array<double, n_values> along {}; // the row at this theta_l
 						if (column)

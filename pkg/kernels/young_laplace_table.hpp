@@ -18,8 +18,8 @@
 // relative, delta in rad, from 1e-4 to 0.3 rad). No polynomial in theta_l follows that cusp; in
 // s = cbrt(theta_l - c) every quantity is smooth. So each (ln V*, rho, theta_s) row holds its
 // ridge c and the bridge on Chebyshev-Lobatto nodes in s from theta_l = 0 to theta_top, and a
-// bridge interpolates in s (barycentric, all nodes), in theta_s (barycentric on Chebyshev nodes),
-// in ln V* and rho (cubic Lagrange). Where the ridge lies beyond the tabulated angles (walls and
+// bridge interpolates in s (barycentric, all nodes) and by cubic Lagrange in theta_s (the four
+// nearest Chebyshev nodes), ln V* and rho. Where the ridge lies beyond the tabulated angles (walls and
 // small ratios at large V* and theta_s) the centre is held below theta_top (center_of).
 // The tables are data/young_laplace_table.bin (float32 values) and data/young_laplace_table_rows.csv
 // (the rows' ridges), written by tools/generate_young_laplace_table.cpp and compiled into the library.

@@ -92,7 +92,7 @@ TEST(Transfer, ExactTableAgainstSolver)
 		const yl::Solution s = b.solve(b.rupture_gap(), 0.07);
 		const double       exact = s.volume1 / s.volume, table = exact_transfer(r.R1, r.R2, V, r.theta, r.theta);
 		worst = std::max(worst, std::abs(table - exact));
-		EXPECT_NEAR(table, exact, 5e-3) << r.R1 << " " << r.R2 << " " << r.vstar << " " << r.theta; // measured 2.1e-3
+		EXPECT_NEAR(table, exact, 5e-3) << r.R1 << " " << r.R2 << " " << r.vstar << " " << r.theta; // measured 1.6e-3
 		if (!is_wall(r.R2) && r.R1 != r.R2) EXPECT_NEAR(exact_transfer(r.R2, r.R1, V, r.theta, r.theta), 1 - table, 1e-15);
 		if (r.R1 == r.R2) EXPECT_EQ(table, 0.5); // a symmetric bridge
 	}
@@ -107,13 +107,14 @@ TEST(Transfer, ExactTableAgainstSolver)
 		last = small;
 	}
 	// Unequal angles (Elskamp's glass 15 deg on steel 45 deg) against the solver, in both orders: within
-	// 1.5e-2 (measured 9.3e-3; near the ridge of the rupture the share varies like cbrt(theta_l - c)).
+	// 1e-3 (measured 1.1e-4; near the ridge of the rupture, where the share varies like cbrt(theta_l - c),
+	// the table's worst is 9.3e-3, docs/models.md).
 	for (double vstar : { 1e-4, 0.12, 0.45 }) {
 		const double       R1 = 1e-3, R2 = 1.5e-3, t1 = 15 * pi / 180, t2 = 45 * pi / 180, V = vstar * std::pow(harmonic_mean_radius(R1, R2), 3);
 		const yl::Bridge   b(R1, R2, V, t1, t2, 1e-10);
 		const yl::Solution s = b.solve(b.rupture_gap(), 0.07);
-		EXPECT_NEAR(exact_transfer(R1, R2, V, t1, t2), s.volume1 / s.volume, 1.5e-2) << vstar;
-		EXPECT_NEAR(exact_transfer(R2, R1, V, t2, t1), s.volume2 / s.volume, 1.5e-2) << vstar;
+		EXPECT_NEAR(exact_transfer(R1, R2, V, t1, t2), s.volume1 / s.volume, 1e-3) << vstar;
+		EXPECT_NEAR(exact_transfer(R2, R1, V, t2, t1), s.volume2 / s.volume, 1e-3) << vstar;
 	}
 	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 1e-11, 0.2, 1.3), std::invalid_argument); // 74 deg > 70 deg (V* = 0.01)
 	EXPECT_THROW(exact_transfer(1e-3, 1e-3, 0.6e-9, 0.2, 0.2), std::invalid_argument); // V* = 0.6 > 0.5

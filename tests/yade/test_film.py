@@ -84,7 +84,8 @@ O.step()
 p = O.interactions[0, 1].phys
 b = kernels.YoungLaplaceBridge(R1, R2, p.Vb, THETA)
 s = b.solve(b.rupture_gap, GAMMA)
-ck.close(p.transfer1, s["volume1"] / s["volume"], 2e-4, "exact transfer1", "Young-Laplace solver, split at the neck at the exact rupture")
+# The table's share: 95th percentile 7.1e-4 absolute over 2000 bridges (docs/models.md), here 1.8e-4.
+ck.close(p.transfer1, s["volume1"] / s["volume"], 2e-3, "exact transfer1", "Young-Laplace solver, split at the neck at the exact rupture")
 ck.true(p.transfer1 < 0.5, "exact rule: the smaller sphere gets less than half")
 
 # ---- the films touch: formation before contact (formation='films'), Elskamp2018 eq. (34) ----
