@@ -25,7 +25,6 @@ namespace yltable {
 		static_assert(sizeof(rows_meta) / sizeof(double) == size_t(n_rows) * row_meta_len,
 		              "data/young_laplace_table_rows.csv does not match the axes: regenerate it (tools/generate_young_laplace_table.cpp)");
 		constexpr size_t row_floats = size_t(n_tl) * n_values;
-		constexpr int    ts_points  = 4;
 
 		// Once: the rows' nodes against the axes, and the size of the values.
 		void check_tables()
@@ -87,6 +86,12 @@ namespace yltable {
 			std::array<double, n_values> v {};
 			double                       Rh = 0;
 			bool                         small_first = true;
+			// The share of solid 1 from v[1], the small solid's (the interpolation stays well inside (0, 1)).
+			double transfer1() const
+			{
+				const double small = std::fmin(1.0, std::fmax(0.0, v[1]));
+				return small_first ? small : 1 - small;
+			}
 		};
 		// The transfer column alone, row after row (n_tl floats a row): read by every film bridge that
 		// breaks, so a call touches 240 short rows instead of 240 x 25 strided values.
@@ -128,7 +133,9 @@ namespace yltable {
 			if (!(plane || rho >= rho_nodes[1] - 1e-12)) outside("R_small/R_large = " + format_value(rho) + " is outside the table's range [1/4, 1] (or a plane)");
 			const double ts = std::min(out.small_first ? theta1 : theta2, theta_max), tl = std::min(out.small_first ? theta2 : theta1, theta_max);
 
-			// Stencils: cubic in ln V* and rho (a plane has its own slice), all Chebyshev nodes in theta_s.
+			// Stencils: cubic in ln V*, rho (a plane has its own slice) and theta_s, on the four nearest nodes.
+			// (A fit in theta_s over all 15 Chebyshev nodes spread the steep rows near 70 deg, where the force
+			// near contact approaches 0, over every theta_s.)
 			std::array<double, n_lnv> lnvs;
 			for (int i = 0; i < n_lnv; ++i) lnvs[i] = lnv_node(i);
 			const int i0 = stencil(lnvs.data(), 0, n_lnv, lnv);
@@ -139,40 +146,31 @@ namespace yltable {
 				k0 = stencil(rho_nodes.data(), 1, n_rho - 1, rho), nk = 4;
 				lagrange(&rho_nodes[k0], rho, wr);
 			}
-			// theta_s: Lagrange on the ts_points Chebyshev nodes around it (a global fit over all 15 spreads the
-			// steep rows near 70 deg, where the force near contact approaches 0, over every theta_s).
 			std::array<double, n_ts> thetas;
 			for (int j = 0; j < n_ts; ++j) thetas[j] = theta_s_node(j);
-			int j_first = 0;
-			while (j_first + 1 < n_ts && thetas[j_first + 1] <= ts) ++j_first;
-			j_first = std::clamp(j_first - (ts_points / 2 - 1), 0, n_ts - ts_points);
-			std::array<double, n_ts> wt {};
-			for (int p = 0; p < ts_points; ++p) {
-				wt[j_first + p] = 1;
-				for (int q = 0; q < ts_points; ++q)
-					if (q != p) wt[j_first + p] *= (ts - thetas[j_first + q]) / (thetas[j_first + p] - thetas[j_first + q]);
-			}
-			const int  j_end      = j_first + ts_points;
-			const auto row_weight = [&](int a, int c, int j) { return wv[a] * wr[c] * wt[j]; };
+			const int j0 = stencil(thetas.data(), 0, n_ts, ts);
+			double    wt[4];
+			lagrange(&thetas[j0], ts, wt);
+			const auto row_weight = [&](int a, int c, int b) { return wv[a] * wr[c] * wt[b]; };
 
 			// The centre of s at this bridge, then its place among the theta_l nodes.
 			double center = 0;
 			for (int a = 0; a < 4; ++a)
 				for (int c = 0; c < nk; ++c)
-					for (int j = j_first; j < j_end; ++j) center += row_weight(a, c, j) * rows_meta[size_t(row_index(i0 + a, k0 + c, j)) * row_meta_len + 4];
+					for (int b = 0; b < 4; ++b) center += row_weight(a, c, b) * rows_meta[size_t(row_index(i0 + a, k0 + c, j0 + b)) * row_meta_len + 4];
 			const auto wl = lobatto_weights<n_tl>(x_of(tl, center));
 
 			for (int a = 0; a < 4; ++a)
 				for (int c = 0; c < nk; ++c)
-					for (int j = j_first; j < j_end; ++j) {
-						const size_t                 r = size_t(row_index(i0 + a, k0 + c, j));
+					for (int b = 0; b < 4; ++b) {
+						const size_t                 r = size_t(row_index(i0 + a, k0 + c, j0 + b));
 						std::array<double, n_values> along {}; // the row at this theta_l
 						if (column)
 							for (int m = 0; m < n_tl; ++m) along[q0] += wl[m] * column[r * n_tl + m];
 						else
 							for (int m = 0; m < n_tl; ++m)
 								for (int q = q0; q < q1; ++q) along[q] += wl[m] * capillary_yltable_values[r * row_floats + size_t(m) * n_values + q];
-						const double w = row_weight(a, c, j);
+						const double w = row_weight(a, c, b);
 						for (int q = q0; q < q1; ++q) out.v[q] += w * along[q];
 					}
 			return out;
@@ -184,8 +182,7 @@ namespace yltable {
 		const Interpolated in = interpolate(R1, R2, volume, theta1, theta2, who, 0, n_values);
 		Curve              out;
 		out.rupture        = in.Rh * std::exp(in.v[0]);
-		const double small = std::fmin(1.0, std::fmax(0.0, in.v[1])); // a share; the interpolation stays well inside (0, 1)
-		out.transfer1      = in.small_first ? small : 1 - small;
+		out.transfer1      = in.transfer1();
 		out.scale          = 2 * pi * in.Rh * gamma;
 		for (int m = 0; m < n_w; ++m) out.g[m] = in.v[2 + m];
 		return out;
@@ -193,9 +190,7 @@ namespace yltable {
 
 	double transfer1(double R1, double R2, double volume, double theta1, double theta2, const char* who)
 	{
-		const Interpolated in    = interpolate(R1, R2, volume, theta1, theta2, who, 1, 2, transfer_column());
-		const double       small = std::fmin(1.0, std::fmax(0.0, in.v[1]));
-		return in.small_first ? small : 1 - small;
+		return interpolate(R1, R2, volume, theta1, theta2, who, 1, 2, transfer_column()).transfer1();
 	}
 
 	double curve_force(const Curve& c, double a)

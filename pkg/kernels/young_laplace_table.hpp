@@ -83,8 +83,7 @@ namespace yltable {
 	// Row index of node (i in ln V*, k in rho, j in theta_s).
 	inline int row_index(int i, int k, int j) { return (i * n_rho + k) * n_ts + j; }
 
-
-	// Interpolated curve of one bridge: force [N] at the tau nodes and the rupture gap [m].
+	// Interpolated curve of one bridge: its force at the tau nodes (as g), the rupture gap and the transfer ratio.
 	struct Curve {
 		std::array<double, n_w> g;         // asinh(F / (scale force_delta)) at the tau nodes [-]
 		double                  scale;     // 2 pi Rh gamma [N]
