@@ -9,6 +9,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace yade {
@@ -122,6 +123,12 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 		throw std::invalid_argument(
 		        "PendularMat: give either tc, en, et or kn, cn, ks, cs on both materials (" + given(m1) + "; " + given(m2) + ")");
 	}
+	for (const auto& [name, a, b] : { std::tuple<const char*, std::string, std::string> { "normalDamping", m1.normalDamping, m2.normalDamping },
+	                                  { "friction", m1.friction, m2.friction } })
+		if (a != b)
+			throw std::invalid_argument(std::string("PendularMat.") + name + " must be equal on both materials of a contact; got '" + a + "' and '" + b + "'");
+	phys->approachDamping = m1.approachDamping;
+	phys->viscousFriction = m1.viscousFriction;
 	if (byTime) {
 		const Real tc = (m1.tc + m2.tc) / 2, en = (m1.en + m2.en) / 2, et = (m1.et + m2.et) / 2;
 		if (!(massR > 0))
@@ -129,7 +136,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 			        "PendularMat with tc, en, et: bodies need a positive mass (masses " + capillary::format_value(body1->state->mass) + " and "
 			        + capillary::format_value(body2->state->mass) + " kg)");
 		const Real omega = Mathr::PI / tc;                                            // half period of the damped oscillation = tc
-		const Real x     = (m1.en == m2.en) ? m1.dampingRatioN : pendular::dampingRatioFor(en); // beta / omega
+		const Real x     = (m1.en == m2.en) ? m1.dampingRatioN : pendular::dampingRatioFor(en, m1.approachDamping); // beta / omega
 		phys->kn         = massR * omega * omega * (1 + x * x);
 		phys->cn         = 2 * massR * omega * x;
 		// Tangential: YADE's ViscElMat rule (Pournin2001 with the factor 2/7 of a rolling sphere).

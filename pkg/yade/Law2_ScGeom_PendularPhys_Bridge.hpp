@@ -121,7 +121,8 @@ public:
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Law2_ScGeom_PendularPhys_Bridge, LawFunctor,
 		"Contact law of yade-capillary. In contact: linear viscoelastic normal force without attraction while unloading, "
-		"incremental tangential spring-dashpot with Coulomb friction (Gladkyy2014 eq. 3-4), plus F(0) if forceInContact. "
+		"incremental tangential spring-dashpot with Coulomb friction (Gladkyy2014 eq. 3-4), plus F(0) if forceInContact; "
+		"PendularMat.normalDamping = 'approach' and friction = 'viscous' give Richefeu2008's law (eq. 3, 12). "
 		"Separated with a bridge: the capillary force of the bridge's model along the line of centres; beyond the rupture "
 		"distance the bridge breaks and the interaction is removed. Separated without a bridge (before the first contact, "
 		"with a detection factor > 1): no force, and the interaction is reset (returns false), so that it is removed once "
@@ -210,7 +211,7 @@ template <class Geom, class Phys, class Rotate, class Sink>
 inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
         const Geom& geom, Phys& phys, const PendularKinematics& k, Real dt, const Rotate& rotate, Sink& sink)
 {
-	constexpr bool full = pendularFullPhys<Phys>; // else no film and no viscosity
+	constexpr bool full = pendularFullPhys<Phys>; // else no film, no viscosity and the default contact law
 	if (geom.penetrationDepth < 0) { // separated
 		phys.shearForce = Vector3r::Zero();
 		if (!phys.active) {
@@ -267,7 +268,13 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	if constexpr (full) viscous = phys.viscous && phys.active;
 	phys.Fcap = (phys.active && phys.forceInContact) ? phys.bridge.force0 : 0;
 	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007). vn > 0: approaching.
-	const auto springDashpot = [&phys, &geom](Real vn) { return math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * vn); };
+	// approach: the dashpot acts only while approaching (Richefeu2008 eq. 3, printed with the sign of the
+	// overlap rate: a dashpot resists the approach), so the force is never below the spring's.
+	bool approach = false, viscousFriction = false; // Richefeu2008's options: never on a record (recordable)
+	if constexpr (full) approach = phys.approachDamping, viscousFriction = phys.viscousFriction;
+	const auto springDashpot = [&phys, &geom, approach](Real vn) {
+		return math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * (approach ? math::max(vn, Real(0)) : vn));
+	};
 	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0) && !viscous) {
 		// Frictionless between two spheres: a central force, from the overlap and the normal relative
 		// velocity only. The spheres' rotations do not enter it (the arms from the centres to the contact
@@ -290,7 +297,15 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	const Real     fn     = springDashpot(vn);
 	Vector3r&  shear = phys.shearForce;
 	Vector3r   shearVisc = Vector3r::Zero();
-	if (phys.tangensOfFrictionAngle > 0) {
+	if (viscousFriction && phys.tangensOfFrictionAngle > 0) {
+		// Richefeu2008 eq. (12): the viscous force cs v_s capped by Coulomb, along the sliding velocity; no
+		// spring, so nothing to rotate or remember. vs is body 1's velocity relative to body 2 at the contact
+		// point, and shear acts on body 2.
+		const Vector3r vs    = relVel - vn * geom.normal;
+		const Real     speed = vs.norm();
+		const Real     maxFs = fn * phys.tangensOfFrictionAngle;
+		shear                = speed > 0 ? Vector3r(vs * (math::min(phys.cs * speed, maxFs) / speed)) : Vector3r::Zero();
+	} else if (phys.tangensOfFrictionAngle > 0) {
 		const Vector3r vs = relVel - vn * geom.normal;
 		rotate(shear);
 		shear += phys.ks * dt * vs;

@@ -17,8 +17,6 @@ namespace {
 	{
 		capillary::out_of_range(cls + "." + name, value, range, unit); // the kernels' one wording
 	}
-	const Real minEn = math::exp(Real(-2)); // the smallest en of a contact that never attracts (dampingRatioFor)
-
 	// `rupture`: a static rule, optionally followed by +pitois (Pitois' dynamic rupture distance,
 	// Elskamp2018 eq. 33); pitois alone is willett+pitois. Returns (static rule, dynamic).
 	std::pair<capillary::Rupture, bool> parseRupture(const std::string& name)
@@ -38,13 +36,15 @@ namespace {
 	}
 } // namespace
 
-Real pendular::dampingRatioFor(Real en)
+Real pendular::dampingRatioFor(Real en, bool approachOnly)
 {
 	const Real target = -math::log(en);
+	// -ln en as a function of x, increasing (see the declaration).
+	const auto loss = [approachOnly](Real x) { return approachOnly ? x * math::atan(1 / x) : x * (Mathr::PI - 2 * math::atan(x)); };
 	Real       lo = 0, hi = 1e8;
 	for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
 		const Real x = (lo + hi) / 2;
-		(x * (Mathr::PI - 2 * math::atan(x)) < target ? lo : hi) = x;
+		(loss(x) < target ? lo : hi) = x;
 	}
 	return (lo + hi) / 2;
 }
@@ -64,7 +64,13 @@ void PendularMat::validate()
 {
 	const std::string c = "PendularMat";
 	if (isSet(tc) && !(tc > 0 && math::isfinite(tc))) badValue(c, "tc", tc, "(0, inf)", "s");
-	if (isSet(en) && !(en > minEn && en <= 1)) badValue(c, "en", en, "(exp(-2) = 0.1353, 1]", "-");
+	if (normalDamping != "always" && normalDamping != "approach")
+		throw std::invalid_argument(c + ".normalDamping = '" + normalDamping + "' is unknown; allowed: always, approach (Richefeu2008 eq. 3)");
+	if (friction != "spring" && friction != "viscous")
+		throw std::invalid_argument(c + ".friction = '" + friction + "' is unknown; allowed: spring, viscous (Richefeu2008 eq. 12)");
+	const bool newApproach = normalDamping == "approach";
+	if (isSet(en) && !(en > pendular::minRestitution(newApproach) && en <= 1))
+		badValue(c, "en", en, newApproach ? "(exp(-1) = 0.3679, 1] with normalDamping='approach'" : "(exp(-2) = 0.1353, 1]", "-");
 	if (isSet(et) && !(et > 0 && et <= 1)) badValue(c, "et", et, "(0, 1]", "-");
 	if (isSet(kn) && !(kn > 0 && math::isfinite(kn))) badValue(c, "kn", kn, "(0, inf)", "N/m");
 	if (isSet(cn) && !(cn >= 0 && math::isfinite(cn))) badValue(c, "cn", cn, "[0, inf)", "N s/m");
@@ -129,7 +135,9 @@ void PendularMat::validate()
 				         "rad");
 		}
 	}
-	if (isSet(en)) dampingRatioN = pendular::dampingRatioFor(en);
+	if (isSet(en)) dampingRatioN = pendular::dampingRatioFor(en, newApproach);
+	approachDamping = newApproach;
+	viscousFriction = friction == "viscous";
 	modelId        = newModel;
 	calibrateId    = newCalibrate;
 	ruptureId      = parsed.first;

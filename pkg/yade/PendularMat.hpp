@@ -24,6 +24,8 @@ namespace yade {
 	((Real, ks, NaN, Attr::triggerPostLoad, "Tangential stiffness of this material [N/m], [0, inf); combined in series.")) \
 	((Real, cs, NaN, Attr::triggerPostLoad, "Tangential damping of this material [N s/m], [0, inf); combined in series.")) \
 	((Real, frictionAngle, 0.5, Attr::triggerPostLoad, "Contact friction angle [rad], [0, pi/2); the smaller of two materials is used.")) \
+	((std::string, normalDamping, "always", Attr::triggerPostLoad, "When the normal dashpot acts: always (the default: approaching and separating, the contact force floored at 0, Gladkyy2014 eq. 3 with Schwager & Poeschel 2007) or approach (only while the particles approach, Richefeu2008 eq. 3: no dissipation while unloading; en then gives the damping by the restitution of that law, en in (exp(-1), 1]). Must be equal on both materials.")) \
+	((std::string, friction, "spring", Attr::triggerPostLoad, "Tangential contact force: spring (the default: incremental tangential spring ks and dashpot cs, capped by Coulomb, Gladkyy2014 eq. 4) or viscous (Richefeu2008 eq. 12: -min(cs |v_t|, mu f_n) v_t/|v_t| with the sliding velocity v_t and the contact part f_n of the normal force, the capillary force excluded; no spring, ks is not used, cs is the tangential viscosity gamma_t [N s/m]). Must be equal on both materials.")) \
 	((bool, wet, false, Attr::triggerPostLoad, "True: liquid bridges form at contacts of two wet materials. Requires Vb > 0 and gamma > 0.")) \
 	((Real, Vb, 0, Attr::triggerPostLoad, "Liquid bridge volume [m^3], (0, inf) when wet. Two materials: arithmetic mean. With liquid='film': the largest bridge volume (a larger Shi-McCarthy volume is capped, the rest stays on the films).")) \
 	((Real, gamma, 0, Attr::triggerPostLoad, "Surface tension [N/m], (0, inf) when wet. Two materials: arithmetic mean.")) \
@@ -53,7 +55,9 @@ public:
 	bool               filmMode      = false; // liquid == "film"
 	bool               filmFormation = false; // formation == "films"
 	capillary::Transfer transferId   = capillary::Transfer::exact;
-	Real               dampingRatioN = 0; // beta/omega for `en`, see pendular::dampingRatioFor
+	bool               approachDamping = false; // normalDamping == "approach" (Richefeu2008 eq. 3)
+	bool               viscousFriction = false; // friction == "viscous" (Richefeu2008 eq. 12)
+	Real               dampingRatioN = 0; // beta/omega for `en` under normalDamping, see pendular::dampingRatioFor
 	void               postLoad(PendularMat&);
 
 private:
@@ -91,7 +95,13 @@ namespace pendular {
 	// en = exp(-x (pi - 2 atan x)) with x = beta/omega (damping rate over damped frequency), not
 	// the textbook exp(-pi x). Returns x for a given en in (exp(-2), 1] (the function is
 	// increasing in x and tends to 2 as x -> infinity).
-	Real dampingRatioFor(Real en);
+	// approachOnly (Richefeu2008 eq. 3, the dashpot acts only while approaching): the damped
+	// approach ends at the largest overlap, omega t* = atan(1/x), and the undamped unloading returns
+	// the elastic energy stored there, so en = exp(-beta t*) = exp(-x atan(1/x)); en in (exp(-1), 1]
+	// (x atan(1/x) increases from 0 to 1).
+	Real dampingRatioFor(Real en, bool approachOnly = false);
+	// The smallest en (exclusive) of either normal damping.
+	inline Real minRestitution(bool approachOnly) { return math::exp(Real(approachOnly ? -1 : -2)); }
 } // namespace pendular
 
 } // namespace yade

@@ -32,8 +32,10 @@ public:
 		"formed at the first contact (``active``) -> broken beyond ``sCrit`` (the interaction is then removed, so a new bridge "
 		"needs a new contact). ``normalForce`` includes the capillary force.",
 		((Real, cn, 0, Attr::readonly, "Normal damping [N s/m]."))
-		((Real, cs, 0, Attr::readonly, "Tangential damping [N s/m]."))
+		((Real, cs, 0, Attr::readonly, "Tangential damping [N s/m]; with viscousFriction the tangential viscosity gamma_t of Richefeu2008 eq. 12."))
 		((Real, tangensOfFrictionAngle, 0, Attr::readonly, "Tangent of the contact friction angle [-]."))
+		((bool, approachDamping, false, Attr::readonly, "The normal dashpot acts only while approaching (PendularMat.normalDamping = 'approach', Richefeu2008 eq. 3)."))
+		((bool, viscousFriction, false, Attr::readonly, "Viscous-regularised Coulomb friction without a tangential spring, cs the viscosity (PendularMat.friction = 'viscous', Richefeu2008 eq. 12)."))
 		((bool, wet, false, Attr::readonly, "Both materials are wet: a bridge forms at contact."))
 		((bool, active, false, Attr::readonly, "A liquid bridge exists (formed at contact, not yet broken)."))
 		((bool, film, false, Attr::readonly, "The bridge's liquid comes from the bodies' films (PendularMat.liquid = 'film'); Vb is 0 until it forms."))

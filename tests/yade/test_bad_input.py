@@ -32,6 +32,7 @@ bad_values = [
     ("eta", -0.1, ["eta", "allowed range"]), ("eta", nan, ["eta"]),
     ("viscousNormal", "stokes", ["viscousNormal", "pitois", "adams_perchard"]), ("viscousSmin", 2.0, ["viscousSmin"]),
     ("calibrateFrom", "linear_irreversible", ["calibrateFrom"]),
+    ("normalDamping", "sometimes", ["normalDamping", "always", "approach"]), ("friction", "sliding", ["friction", "spring", "viscous"]),
 ]
 for name, value, words in bad_values:
     ck.raises(ValueError, lambda: PendularMat(**dict(good, **{name: value})), words, "PendularMat(%s=%r)" % (name, value))
@@ -45,6 +46,16 @@ for name, value, words in bad_values:
     ck.true(after == before or (isinstance(before, float) and math.isnan(before) and math.isnan(after)),
             "a rejected %s assignment is rolled back (%r -> %r)" % (name, before, after))
 ck.raises(ValueError, lambda: PendularMat(wet=True, gamma=0.05), ["Vb", "when wet"], "wet without Vb")
+# The approach-only dashpot (Richefeu2008 eq. 3) dissipates less: its en is above exp(-1).
+ck.raises(ValueError, lambda: PendularMat(**dict(good, en=0.3, normalDamping="approach")), ["en", "exp(-1)", "approach"],
+          "en = 0.3 with normalDamping='approach'")
+m = PendularMat(**dict(good, en=0.3))
+
+
+def approach():
+    m.normalDamping = "approach"
+ck.raises(ValueError, approach, ["en", "exp(-1)"], "normalDamping='approach' on a material with en = 0.3")
+ck.true(m.normalDamping == "always", "the rejected normalDamping assignment is rolled back")
 m = PendularMat(tc=1e-4, en=0.8, et=0.8)
 m.Vb, m.gamma = 1e-11, 0.05
 m.wet = True
@@ -67,6 +78,9 @@ ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(**dict
           ["model", "willett_full", "richefeu"], "different models on the two materials")
 ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(**dict(good, rupture="lian"))),
           ["rupture"], "different rupture rules")
+for name, value in (("normalDamping", "approach"), ("friction", "viscous")):
+    ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(**dict(good, **{name: value}))), [name, "always" if name == "normalDamping" else "spring", value],
+              "different %s on the two materials" % name)
 ck.raises(ValueError, lambda: first_step(PendularMat(**good), PendularMat(wet=True, Vb=1e-11, gamma=0.05)),
           ["tc, en, et", "kn, cn, ks, cs"], "contact parameters missing on one material")
 ck.raises(ValueError, lambda: first_step(PendularMat(**dict(good, Vb=5e-10)), PendularMat(**dict(good, Vb=5e-10))),
