@@ -1,6 +1,7 @@
 // Python module of the pure capillary kernels (yade_capillary._kernels), re-exported as
 // yade_capillary.kernels. Usable in plain python3 and inside yade: plot F(a) without a simulation.
 #include "models.hpp"
+#include "bonds.hpp"
 #include "film.hpp"
 #include "transfer.hpp"
 #include "viscous.hpp"
@@ -322,4 +323,28 @@ PYBIND11_MODULE(_kernels, m)
 	      "static: static rupture distance [m] > 0 (e.g. rupture_distance(...)); v_rel: relative speed |v1 - v2| [m/s] "
 	      "(sign ignored); eta: viscosity [Pa s] >= 0 (0: the static distance); gamma: surface tension [N/m]. Raises "
 	      "ValueError naming the parameter and its allowed range.");
+
+	m.def("bond_cube", &bonds::cube, py::arg("R1"), py::arg("R2"),
+	      "R^3 [m^3] of Richefeu2008 eq. (14), R = sqrt(R1 R2) (a wall, R2 = inf: the Derjaguin pair of radius 2 R1).");
+	m.def(
+	        "bond_threshold",
+	        [](const std::string& rule, double R1, double R2, double gap, double theta1, std::optional<double> theta2) {
+		        return bonds::threshold(rupture_from_name(rule), R1, R2, gap, theta1, theta2.value_or(theta1));
+	        },
+	        py::arg("rule"), py::arg("R1"), py::arg("R2"), py::arg("gap"), py::arg("theta1") = 0.0, py::arg("theta2") = py::none(),
+	        "The least alpha [-] at which a pair at surface gap `gap` [m] is within the debonding distance of the rupture rule "
+	        "(lian: Richefeu2008 eq. 6) for the bond volume V_b = alpha R^3 (eq. 14): 0 in contact, inf if no plausible volume reaches it.");
+	m.def(
+	        "share_liquid",
+	        [](const std::vector<double>& threshold, const std::vector<double>& cube, double liquid) {
+		        const bonds::Sharing s = bonds::share(threshold, cube, liquid);
+		        return py::make_tuple(s.alpha, std::vector<bool>(s.bonded.begin(), s.bonded.end()));
+	        },
+	        py::arg("threshold"), py::arg("cube"), py::arg("liquid"),
+	        "Richefeu2008 eq. (13)-(14) with the eligibility rule (iii): shares `liquid` [m^3] over candidate pairs given by their "
+	        "bond_threshold and bond_cube; returns (alpha, bonded): V_b = alpha R^3 on each bonded pair, sum V_b = liquid, and the "
+	        "bonds are the largest set, in order of threshold, whose every member is within its debonding distance.");
+	m.def("kept_dry", &bonds::kept_dry, py::arg("id1"), py::arg("id2"), py::arg("fraction"), py::arg("seed"),
+	      "Whether the pair (id1, id2) is kept dry for a dry fraction in [0, 1] and a seed (a hash of the unordered pair and the "
+	      "seed: the same pairs at every call, in any order).");
 }

@@ -34,13 +34,18 @@ Where the liquid of a breaking bridge goes (the transfer ratio to solid 1): exac
 
 Liquid carried by the particles (PendularMat.liquid = 'film'; Elskamp 2018 eq. 7-10, 34 after Shi &
 McCarthy): ``film_contribution(Ri, Rj, film)``, ``wall_film_contribution(Ri, W)``, ``film_thickness(R, film)``.
-"""
-from ._kernels import (YoungLaplaceBridge, bridge, diameter_transfer, dynamic_rupture_distance, exact_transfer,  # compiled module
-                       film_contribution, film_thickness, force, models, parabolic_transfer, transfer_ratio, transfer_rules,
-                       wall_film_contribution, rupture_distance, rupture_rules, table_axes, viscous_laws, viscous_normal_force,
-                       viscous_tangential, willett_coefficients)
 
-__all__ = ["YoungLaplaceBridge", "bridge", "diameter_transfer", "dynamic_rupture_distance", "exact_transfer", "film_contribution",
+Liquid shared over bonds (Richefeu 2008 eq. 13-14, V_b = alpha R^3, R = sqrt(R1 R2), every pair within the
+debonding distance of its own bond): ``bond_threshold(rule, R1, R2, gap, theta1, theta2)`` and ``bond_cube(R1, R2)``
+per candidate pair, ``share_liquid(thresholds, cubes, liquid)`` -> (alpha, bonded), and
+``kept_dry(id1, id2, fraction, seed)`` for the pairs kept dry.
+"""
+from ._kernels import (YoungLaplaceBridge, bond_cube, bond_threshold, bridge, diameter_transfer, dynamic_rupture_distance, exact_transfer,  # compiled module
+                       film_contribution, film_thickness, force, kept_dry, models, parabolic_transfer, transfer_ratio, transfer_rules,
+                       wall_film_contribution, rupture_distance, rupture_rules, table_axes, viscous_laws, viscous_normal_force,
+                       viscous_tangential, share_liquid, willett_coefficients)
+
+__all__ = ["YoungLaplaceBridge", "bond_cube", "bond_threshold", "kept_dry", "share_liquid", "bridge", "diameter_transfer", "dynamic_rupture_distance", "exact_transfer", "film_contribution",
            "film_thickness", "force", "parabolic_transfer", "transfer_ratio", "transfer_rules", "wall_film_contribution", "models", "rupture_distance", "rupture_rules",
            "table_axes", "viscous_laws", "viscous_normal_force", "viscous_tangential", "willett_coefficients", "MODEL_NAMES",
            "RUPTURE_NAMES", "VISCOUS_NAMES", "TRANSFER_NAMES"]
