@@ -151,6 +151,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 		phys->cs    = series(m1.cs, m2.cs);
 	}
 	phys->tangensOfFrictionAngle = math::tan(math::min(m1.frictionAngle, m2.frictionAngle));
+	phys->rollingFriction        = (m1.rollingFriction + m2.rollingFriction) / 2;
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(

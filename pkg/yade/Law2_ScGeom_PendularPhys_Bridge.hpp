@@ -270,12 +270,12 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 	// Gladkyy2014 eq. (3): linear spring-dashpot; no attraction while unloading (Schwager2007). vn > 0: approaching.
 	// approach: the dashpot acts only while approaching (Richefeu2008 eq. 3, printed with the sign of the
 	// overlap rate: a dashpot resists the approach), so the force is never below the spring's.
-	bool approach = false, viscousFriction = false; // Richefeu2008's options: never on a record (recordable)
-	if constexpr (full) approach = phys.approachDamping, viscousFriction = phys.viscousFriction;
+	bool approach = false, viscousFriction = false, rolling = false; // options never on a record (recordable)
+	if constexpr (full) approach = phys.approachDamping, viscousFriction = phys.viscousFriction, rolling = phys.rollingFriction > 0;
 	const auto springDashpot = [&phys, &geom, approach](Real vn) {
 		return math::max(Real(0), phys.kn * geom.penetrationDepth + phys.cn * (approach ? math::max(vn, Real(0)) : vn));
 	};
-	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0) && !viscous) {
+	if (twoSpheres && !(phys.tangensOfFrictionAngle > 0) && !viscous && !rolling) {
 		// Frictionless between two spheres: a central force, from the overlap and the normal relative
 		// velocity only. The spheres' rotations do not enter it (the arms from the centres to the contact
 		// point lie along the normal, so omega x arm is normal to it), and the force has no moment about
@@ -317,17 +317,33 @@ inline bool Law2_ScGeom_PendularPhys_Bridge::apply(
 		// bridge: the Coulomb cap is 0, so the tangential spring and dashpot would be cut to zero anyway.
 		shear = Vector3r::Zero();
 	}
+	// Rolling friction (Elskamp2018 Table 3, mu_roll [m]): a moment of constant magnitude mu_roll fn against
+	// the relative rolling, on body 1; its opposite on body 2. At rest it flips with the residual rolling,
+	// whose speed it bounds to mu_roll fn dt (1/I1 + 1/I2).
+	Vector3r roll1 = Vector3r::Zero();
+	if constexpr (full)
+		if (rolling) {
+			const Vector3r w     = k.angVel1 - k.angVel2;
+			const Vector3r wRoll = w - w.dot(geom.normal) * geom.normal;
+			const Real     speed = wRoll.norm();
+			if (speed > 0) roll1 = -(phys.rollingFriction * fn / speed) * wRoll;
+		}
 	if constexpr (full)
 		if (viscous) {
 			const PendularViscousMoments m = pendularViscous(geom, phys, k, -geom.penetrationDepth);
 			phys.normalForce               = (fn - phys.Fcap - phys.Fvisc) * geom.normal;
 			const Vector3r f               = phys.normalForce + shear + shearVisc; // acts at the contact point
-			sink.forceTorque(f + phys.viscousShear, m.torque1 - c1x.cross(f), m.torque2 + c2x.cross(f));
+			sink.forceTorque(f + phys.viscousShear, m.torque1 - c1x.cross(f) + roll1, m.torque2 + c2x.cross(f) - roll1);
 			return true;
 		}
 	// A wall or facet keeps the moment of the force at the contact point about its own position.
 	phys.normalForce = (fn - phys.Fcap) * geom.normal;
 	const Vector3r f = phys.normalForce + shear + shearVisc;
+	if constexpr (full)
+		if (rolling) {
+			sink.forceTorque(f, roll1 - c1x.cross(f), c2x.cross(f) - roll1);
+			return true;
+		}
 	sink.forceTorque(f, -c1x.cross(f), c2x.cross(f));
 	return true;
 }

@@ -426,13 +426,13 @@ void PendularLoop::dispatched(const shared_ptr<Interaction>& I, const Resolved& 
 
 // A real sphere-sphere interaction of the fused pass whose state fits a Record: a fixed-volume
 // inviscid bridge (or none) on ScGeom, with valid contact parameters and the default contact law
-// (a record's law has no Richefeu2008 options, so that the records' pass does not test for them).
+// (a record's law has no rolling friction nor Richefeu2008 options, so that the records' pass does not test for them).
 bool PendularLoop::recordable(const Interaction& I, const Resolved& r) const
 {
 	if (!r.fused || !sphereHere(I.getId1()) || !sphereHere(I.getId2())) return false;
 	if (!I.geom || !I.phys || typeid(*I.geom) != typeid(ScGeom) || typeid(*I.phys) != typeid(PendularPhys)) return false;
 	const auto& phys = static_cast<const PendularPhys&>(*I.phys);
-	return !phys.film && !phys.viscous && !phys.approachDamping && !phys.viscousFriction && phys.kn > 0;
+	return !phys.film && !phys.viscous && !phys.approachDamping && !phys.viscousFriction && !(phys.rollingFriction > 0) && phys.kn > 0;
 }
 
 } // namespace yade

@@ -77,6 +77,7 @@ void PendularMat::validate()
 	if (isSet(ks) && !(ks >= 0 && math::isfinite(ks))) badValue(c, "ks", ks, "[0, inf)", "N/m");
 	if (isSet(cs) && !(cs >= 0 && math::isfinite(cs))) badValue(c, "cs", cs, "[0, inf)", "N s/m");
 	if (!(frictionAngle >= 0 && frictionAngle < Mathr::HALF_PI)) badValue(c, "frictionAngle", frictionAngle, "[0, pi/2)", "rad");
+	if (!(rollingFriction >= 0 && math::isfinite(rollingFriction))) badValue(c, "rollingFriction", rollingFriction, "[0, inf)", "m");
 	if (!(Vb >= 0 && math::isfinite(Vb))) badValue(c, "Vb", Vb, "[0, inf), and > 0 when wet", "m^3");
 	if (!(gamma >= 0 && math::isfinite(gamma))) badValue(c, "gamma", gamma, "[0, inf), and > 0 when wet", "N/m");
 	if (!(theta >= 0 && theta < Mathr::HALF_PI)) badValue(c, "theta", theta, "[0, pi/2) (radians)", "rad");

@@ -34,6 +34,7 @@ public:
 		((Real, cn, 0, Attr::readonly, "Normal damping [N s/m]."))
 		((Real, cs, 0, Attr::readonly, "Tangential damping [N s/m]; with viscousFriction the tangential viscosity gamma_t of Richefeu2008 eq. 12."))
 		((Real, tangensOfFrictionAngle, 0, Attr::readonly, "Tangent of the contact friction angle [-]."))
+		((Real, rollingFriction, 0, Attr::readonly, "Rolling friction mu_roll [m]: the moment mu_roll f_n against the relative rolling (PendularMat.rollingFriction, Elskamp2018 Table 3)."))
 		((bool, approachDamping, false, Attr::readonly, "The normal dashpot acts only while approaching (PendularMat.normalDamping = 'approach', Richefeu2008 eq. 3)."))
 		((bool, viscousFriction, false, Attr::readonly, "Viscous-regularised Coulomb friction without a tangential spring, cs the viscosity (PendularMat.friction = 'viscous', Richefeu2008 eq. 12)."))
 		((bool, wet, false, Attr::readonly, "Both materials are wet: a bridge forms at contact."))

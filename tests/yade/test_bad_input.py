@@ -25,7 +25,7 @@ bad_values = [
     ("theta", math.pi / 2, ["theta", "[0, pi/2)"]), ("theta", -0.1, ["theta"]), ("theta", nan, ["theta"]),
     ("en", 0.0, ["en", "1]"]), ("en", 1.2, ["en"]), ("et", 0.0, ["et"]),
     ("tc", 0.0, ["tc", "(0, inf)"]), ("tc", -1e-4, ["tc"]), ("kn", -1.0, ["kn"]),
-    ("frictionAngle", 2.0, ["frictionAngle"]),
+    ("frictionAngle", 2.0, ["frictionAngle"]), ("rollingFriction", -1e-4, ["rollingFriction", "[0, inf)"]),
     ("model", "Willett_numeric", ["model", "willett_full", "rabinovich_lambert"]),
     ("rupture", "bogus", ["rupture", "lian", "willett_elskamp", "+pitois"]),
     ("rupture", "pitois", ["rupture", "eta > 0"]),  # the dynamic rule needs a viscosity
