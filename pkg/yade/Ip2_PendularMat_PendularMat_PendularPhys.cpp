@@ -20,7 +20,43 @@ CREATE_LOGGER(Ip2_PendularMat_PendularMat_PendularPhys);
 namespace {
 	using pendular::isSet;
 	using pendular::radiusOf;
+
+	// The value a pair table lists for materials id1 and id2, in either order; NaN if it lists none.
+	Real listed(const shared_ptr<MatchMaker>& table, int id1, int id2)
+	{
+		if (!table) return NaN;
+		for (const Vector3r& m : table->matches)
+			if ((int(m[0]) == id1 && int(m[1]) == id2) || (int(m[0]) == id2 && int(m[1]) == id1)) return m[2];
+		return NaN;
+	}
+	// Every match of a table: two material ids (integers >= 0) and a value inside `allows`.
+	template <class Allows> void checkTable(const shared_ptr<MatchMaker>& table, const char* name, Allows allows, const char* range, const char* unit)
+	{
+		if (!table) return;
+		for (const Vector3r& m : table->matches) {
+			const std::string where = std::string("Ip2_PendularMat_PendularMat_PendularPhys.") + name + ": the match (" + capillary::format_value(m[0]) + ", "
+			        + capillary::format_value(m[1]) + ", " + capillary::format_value(m[2]) + ")";
+			for (const Real id : { m[0], m[1] })
+				if (!(id >= 0 && id == math::round(id))) throw std::invalid_argument(where + " has a material id that is not an integer >= 0");
+			if (!allows(m[2])) throw std::invalid_argument(where + " has the value " + capillary::format_value(m[2]) + " " + unit + ", outside the allowed range " + range);
+		}
+	}
 } // namespace
+
+void Ip2_PendularMat_PendularMat_PendularPhys::postLoad(Ip2_PendularMat_PendularMat_PendularPhys&)
+{
+	try {
+		checkTable(frictionAngle, "frictionAngle", [](Real v) { return v >= 0 && v < Mathr::HALF_PI; }, "[0, pi/2)", "rad");
+		checkTable(rollingFriction, "rollingFriction", [](Real v) { return v >= 0 && math::isfinite(v); }, "[0, inf)", "m");
+		// The range of en depends on the materials' normalDamping: the lower bound of the approach-only dashpot is checked per pair.
+		checkTable(en, "en", [](Real v) { return v > pendular::minRestitution(false) && v <= 1; }, "(exp(-2) = 0.1353, 1]", "-");
+	} catch (const std::invalid_argument&) {
+		// A rejected table is rolled back, so that it does not make every later assignment fail.
+		frictionAngle = goodTables[0], rollingFriction = goodTables[1], en = goodTables[2];
+		throw;
+	}
+	goodTables = { frictionAngle, rollingFriction, en };
+}
 
 void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1, const shared_ptr<Material>& b2, const shared_ptr<Interaction>& I)
 {
@@ -129,14 +165,23 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 			throw std::invalid_argument(std::string("PendularMat.") + name + " must be equal on both materials of a contact; got '" + a + "' and '" + b + "'");
 	phys->approachDamping = m1.approachDamping;
 	phys->viscousFriction = m1.viscousFriction;
+	const Real pairEn = listed(en, m1.id, m2.id);
+	if (isSet(pairEn)) {
+		const std::string pair = "Ip2_PendularMat_PendularMat_PendularPhys.en lists " + capillary::format_value(pairEn) + " for materials "
+		        + std::to_string(m1.id) + " and " + std::to_string(m2.id);
+		if (!byTime) throw std::invalid_argument(pair + ", which are given by kn, cn, ks, cs; a restitution per pair needs tc, en, et on both");
+		if (!(pairEn > pendular::minRestitution(m1.approachDamping)))
+			throw std::invalid_argument(pair + ", outside the allowed range (exp(-1) = 0.3679, 1] of normalDamping='approach'");
+	}
 	if (byTime) {
-		const Real tc = (m1.tc + m2.tc) / 2, en = (m1.en + m2.en) / 2, et = (m1.et + m2.et) / 2;
+		// (the restitution is `e`: `en` is the pair table)
+		const Real tc = (m1.tc + m2.tc) / 2, e = isSet(pairEn) ? pairEn : (m1.en + m2.en) / 2, et = (m1.et + m2.et) / 2;
 		if (!(massR > 0))
 			throw std::invalid_argument(
 			        "PendularMat with tc, en, et: bodies need a positive mass (masses " + capillary::format_value(body1->state->mass) + " and "
 			        + capillary::format_value(body2->state->mass) + " kg)");
 		const Real omega = Mathr::PI / tc;                                            // half period of the damped oscillation = tc
-		const Real x     = (m1.en == m2.en) ? m1.dampingRatioN : pendular::dampingRatioFor(en, m1.approachDamping); // beta / omega
+		const Real x     = (m1.en == m2.en && !isSet(pairEn)) ? m1.dampingRatioN : pendular::dampingRatioFor(e, m1.approachDamping); // beta / omega
 		phys->kn         = massR * omega * omega * (1 + x * x);
 		phys->cn         = 2 * massR * omega * x;
 		// Tangential: YADE's ViscElMat rule (Pournin2001 with the factor 2/7 of a rolling sphere).
@@ -150,8 +195,9 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setContact(
 		phys->ks    = series(m1.ks, m2.ks);
 		phys->cs    = series(m1.cs, m2.cs);
 	}
-	phys->tangensOfFrictionAngle = math::tan(math::min(m1.frictionAngle, m2.frictionAngle));
-	phys->rollingFriction        = (m1.rollingFriction + m2.rollingFriction) / 2;
+	const Real pairFriction = listed(frictionAngle, m1.id, m2.id), pairRolling = listed(rollingFriction, m1.id, m2.id);
+	phys->tangensOfFrictionAngle = math::tan(isSet(pairFriction) ? pairFriction : math::min(m1.frictionAngle, m2.frictionAngle));
+	phys->rollingFriction        = isSet(pairRolling) ? pairRolling : (m1.rollingFriction + m2.rollingFriction) / 2;
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(

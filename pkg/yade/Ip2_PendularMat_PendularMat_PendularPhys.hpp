@@ -6,6 +6,9 @@
 #include "PendularPhys.hpp"
 #include "YadeHeaders.hpp"
 
+#include <pkg/common/MatchMaker.hpp>
+
+#include <array>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -28,6 +31,8 @@ public:
 	PairDt takeCriticalDt();
 	FUNCTOR2D(PendularMat, PendularMat);
 	DECLARE_LOGGER;
+	// Checks the values of the pair tables (frictionAngle, rollingFriction, en) when one is assigned.
+	void postLoad(Ip2_PendularMat_PendularMat_PendularPhys&);
 
 private:
 	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
@@ -42,18 +47,24 @@ private:
 	long        errorIter        = -1;
 	long        stopAtIterBefore = 0;
 	PairDt      newCriticalDt;
+	// The pair tables after the last successful check (postLoad).
+	std::array<shared_ptr<MatchMaker>, 3> goodTables;
 
 public:
 	// clang-format off
 	YADE_CLASS_BASE_DOC_ATTRS_CTOR_PY(Ip2_PendularMat_PendularMat_PendularPhys, IPhysFunctor,
 		"Creates :yref:`PendularPhys` from two :yref:`PendularMat`. Mixing rules: tc, en, et arithmetic means; kn, cn, ks, cs "
-		"in series; friction angle the smaller; Vb and gamma arithmetic means; contact angles kept per body; model, rupture rule, "
+		"in series; friction angle the smaller; rolling friction the arithmetic mean; the pair tables frictionAngle, "
+		"rollingFriction and en override them for the pairs of materials they list; Vb and gamma arithmetic means; "
+		"contact angles kept per body; model, rupture rule, "
 		"forceInContact and linear parameters must be equal (else an error). Effective mass m1 m2/(m1+m2), where a body that is "
 		"not dynamic counts as infinitely heavy (unless neither is dynamic). A body whose shape is not a Sphere (wall, facet) "
 		"is a plane for the bridge. Input errors are raised by :yref:`PendularCheck`: if only the liquid is wrong, the pair "
 		"gets the contact law without a bridge; if the contact parameters are wrong, the interaction is reset and the error "
 		"comes again at every step.",
-		/*attrs*/,
+		((shared_ptr<MatchMaker>, frictionAngle, , Attr::triggerPostLoad, "Contact friction angle per pair of materials [rad], [0, pi/2): a :yref:`MatchMaker` whose matches (id1, id2, value) list pairs of material ids (Elskamp2018 Table 3); a pair it does not list takes the smaller of the two materials' frictionAngle (the MatchMaker's algo is not used). None (the default): the rule for every pair."))
+		((shared_ptr<MatchMaker>, rollingFriction, , Attr::triggerPostLoad, "Rolling friction mu_roll per pair of materials [m], [0, inf): a :yref:`MatchMaker` as frictionAngle; a pair it does not list takes the arithmetic mean of the materials' rollingFriction."))
+		((shared_ptr<MatchMaker>, en, , Attr::triggerPostLoad, "Normal restitution coefficient per pair of materials [-], (exp(-2), 1] ((exp(-1), 1] with normalDamping='approach'): a :yref:`MatchMaker` as frictionAngle, for materials given by tc, en, et; a pair it does not list takes the arithmetic mean of the materials' en.")),
 		/*ctor*/,
 		.def("criticalDt", &Ip2_PendularMat_PendularMat_PendularPhys::criticalDt, (boost::python::arg("id1"), boost::python::arg("id2")),
 		     "Two-body critical time step [s] of bodies id1 and id2 of the current scene (their contact parameters and masses, "

@@ -25,7 +25,7 @@ def interaction_loop(loop="fused", detection_factor=1.0, law_label="capillaryLaw
     patches.install(records)
     functors = ([Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=detection_factor), Ig2_Facet_Sphere_ScGeom(),
                  Ig2_Wall_Sphere_ScGeom()],
-                [Ip2_PendularMat_PendularMat_PendularPhys()],
+                [Ip2_PendularMat_PendularMat_PendularPhys(label="capillaryIp2")],
                 [Law2_ScGeom_PendularPhys_Bridge(label=law_label)])
     if loop == "standard":
         return InteractionLoop(*functors, label="interactionLoop")
