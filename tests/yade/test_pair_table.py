@@ -9,20 +9,12 @@ from yade.utils import sphere
 from yade.wrapper import MatchMaker, PendularMat
 
 from yade_capillary.scene import engines
+from collisions import damping_ratio
 from testing import Checker
 
 ck = Checker("test_pair_table")
 R, rho, tc = 1e-3, 2500.0, 1e-4
 mass = rho * 4 / 3 * math.pi * R ** 3
-
-
-def schwager_ratio(en):
-    """x = beta/omega for en = exp(-x (pi - 2 atan x)) (Schwager & Poeschel 2007), by bisection."""
-    lo, hi = 0.0, 1e8
-    for _ in range(300):
-        x = 0.5 * (lo + hi)
-        lo, hi = (x, hi) if x * (math.pi - 2 * math.atan(x)) < -math.log(en) else (lo, x)
-    return 0.5 * (lo + hi)
 
 
 def scene(tables, **extra):
@@ -50,14 +42,14 @@ m_red, omega = mass / 2, math.pi / tc
 # The listed pair (0, 1), in either order of the ids.
 ck.close(phys[(0, 1)].tangensOfFrictionAngle, math.tan(0.4), 1e-14, "listed pair: friction", "the frictionAngle table")
 ck.close(phys[(0, 1)].rollingFriction, 5e-5, 1e-14, "listed pair (ids reversed in the table): rolling friction", "the rollingFriction table")
-x = schwager_ratio(0.9)
+x = damping_ratio(0.9)
 ck.close(phys[(0, 1)].cn, 2 * m_red * omega * x, 1e-9, "listed pair: cn from the table's en = 0.9", "c = 2 m beta, Schwager2007")
 ck.close(phys[(0, 1)].kn, m_red * omega ** 2 * (1 + x * x), 1e-9, "listed pair: kn from tc and the table's en", "k = m (omega^2 + beta^2)")
 # Pairs the tables do not list keep the rules (the smaller angle, although the table's algo is 'max').
 ck.close(phys[(0, 0)].tangensOfFrictionAngle, math.tan(0.3), 1e-14, "unlisted pair (0, 0): friction", "its material")
 ck.close(phys[(0, 2)].tangensOfFrictionAngle, math.tan(0.25), 1e-14, "unlisted pair (0, 2): friction", "the smaller of 0.3 and 0.25")
 ck.close(phys[(0, 2)].rollingFriction, 1.5e-4, 1e-14, "unlisted pair (0, 2): rolling friction", "the mean of 1e-4 and 2e-4")
-x = schwager_ratio(0.65)
+x = damping_ratio(0.65)
 ck.close(phys[(0, 2)].cn, 2 * m_red * omega * x, 1e-9, "unlisted pair (0, 2): cn from the mean en = 0.65", "c = 2 m beta, Schwager2007")
 # Without tables every pair keeps the rules.
 phys = scene({})

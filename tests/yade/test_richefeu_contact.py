@@ -10,20 +10,12 @@ from yade.utils import sphere
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines
+from collisions import damping_ratio, head_on
 from testing import Checker
 
 ck = Checker("test_richefeu_contact")
 R, rho, tc = 1e-3, 2500.0, 1e-4
 mass = rho * 4 / 3 * math.pi * R ** 3
-
-
-def approach_ratio(en):
-    """x = beta/omega of the approach-only dashpot for restitution en: -ln en = x atan(1/x), by bisection."""
-    lo, hi = 1e-12, 1e8
-    for _ in range(300):
-        x = 0.5 * (lo + hi)
-        lo, hi = (x, hi) if x * math.atan(1 / x) < -math.log(en) else (lo, x)
-    return 0.5 * (lo + hi)
 
 
 def pair(loop, overlap, vel2, **mat):
@@ -56,7 +48,7 @@ for loop in ("fused", "standard"):
     # damped frequency, x = beta/omega from en by the approach-only restitution (closed form above).
     a, b = pair(loop, overlap, (0, 0, 0), tc=tc, en=en, et=0.9, frictionAngle=0.0, normalDamping="approach")
     p = O.interactions[a, b].phys
-    m_red, omega, x = mass / 2, math.pi / tc, approach_ratio(en)
+    m_red, omega, x = mass / 2, math.pi / tc, damping_ratio(en, approach_only=True)
     ck.close(p.kn, m_red * omega ** 2 * (1 + x * x), 1e-9, "%s: kn from tc, en (approach)" % loop, "k = m (omega^2 + beta^2)")
     ck.close(p.cn, 2 * m_red * omega * x, 1e-9, "%s: cn from tc, en (approach)" % loop, "c = 2 m beta, x from en = exp(-x atan(1/x))")
     ck.true(p.approachDamping and not p.viscousFriction, "%s: the phys flags follow the material" % loop)
@@ -103,18 +95,8 @@ for en in (0.4, 0.6, 0.9):
     O.reset()
     O.dt = tc / 200
     m = O.materials.append(PendularMat(tc=tc, en=en, et=0.9, density=rho, frictionAngle=0.0, normalDamping="approach"))
-    a = O.bodies.append(sphere((0, 0, 0), R, material=m))
-    b = O.bodies.append(sphere((2 * R + 1e-6, 0, 0), R, material=m))
-    v0 = 0.05
-    O.bodies[a].state.vel, O.bodies[b].state.vel = (v0, 0, 0), (-v0, 0, 0)
-    O.engines = engines()
-    touched = False
-    for _ in range(20000):
-        O.step()
-        touched = touched or O.interactions.countReal() > 0
-        if touched and O.interactions.countReal() == 0:
-            break
-    measured = (O.bodies[b].state.vel[0] - O.bodies[a].state.vel[0]) / (2 * v0)
+    touched, measured = head_on(m, R)
+    ck.true(touched, "en=%g: the spheres collided" % en)
     ck.close(measured, en, 0.01, "restitution with normalDamping='approach', en=%g" % en, "en = exp(-x atan(1/x)) of Richefeu2008 eq. (3)")
     print("approach-only dashpot: en = %.2f, measured %.5f" % (en, measured))
 ck.finish()
