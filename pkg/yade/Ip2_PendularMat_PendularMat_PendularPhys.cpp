@@ -2,7 +2,9 @@
 // parameters and the bridge of a PendularPhys, and the errors and time steps it keeps for PendularCheck.
 #include "Ip2_PendularMat_PendularMat_PendularPhys.hpp"
 #include "CriticalDt.hpp"
+#include "PendularBonds.hpp"
 #include "PendularCheck.hpp"
+#include "PendularLoop.hpp"
 #include "PendularState.hpp"
 #include "transfer.hpp"
 #include "young_laplace_table.hpp"
@@ -11,6 +13,7 @@
 #include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 namespace yade {
 
@@ -86,6 +89,43 @@ void Ip2_PendularMat_PendularMat_PendularPhys::go(const shared_ptr<Material>& b1
 	const Real                        dt = pendular::pairCriticalDt(*phys, *body1, *body2);
 	const std::lock_guard<std::mutex> lock(dtMutex);
 	if (dt < newCriticalDt.dt) newCriticalDt = { dt, I->getId1(), I->getId2() };
+}
+
+long Ip2_PendularMat_PendularMat_PendularPhys::updateContacts()
+{
+	if (Omega::instance().isRunning())
+		throw std::runtime_error("updateContacts() while the simulation runs (O.run()); call O.pause() or O.wait() first");
+	Scene* current = Omega::instance().getScene().get();
+	PendularLoop::syncScene(current, true); // the records into the objects; the loop reads them again at its next step
+	// Every pair first on copies, so that a refused one leaves all as they were.
+	std::vector<std::pair<shared_ptr<PendularPhys>, shared_ptr<PendularPhys>>> updated;
+	for (const auto& I : *current->interactions) {
+		if (!I->isReal()) continue;
+		const auto phys = YADE_PTR_DYN_CAST<PendularPhys>(I->phys);
+		const auto& b1 = Body::byId(I->getId1(), current);
+		const auto& b2 = Body::byId(I->getId2(), current);
+		const auto* m1 = b1 ? dynamic_cast<const PendularMat*>(b1->material.get()) : nullptr;
+		const auto* m2 = b2 ? dynamic_cast<const PendularMat*>(b2->material.get()) : nullptr;
+		if (!phys || !m1 || !m2) continue;
+		auto copy = shared_ptr<PendularPhys>(new PendularPhys(*phys));
+		try {
+			setContact(copy, *m1, *m2, b1, b2);
+		} catch (const std::exception& e) {
+			throw std::invalid_argument(std::string(e.what()) + " (interaction " + std::to_string(I->getId1()) + "-" + std::to_string(I->getId2())
+			                            + "; no interaction was changed)");
+		}
+		updated.emplace_back(phys, copy);
+	}
+	for (auto& u : updated) {
+		PendularPhys& p = *u.first;
+		const PendularPhys& c = *u.second;
+		p.kn = c.kn, p.cn = c.cn, p.ks = c.ks, p.cs = c.cs;
+		p.tangensOfFrictionAngle = c.tangensOfFrictionAngle;
+		p.rollingFriction        = c.rollingFriction;
+		p.approachDamping        = c.approachDamping;
+		p.viscousFriction        = c.viscousFriction;
+	}
+	return long(updated.size());
 }
 
 void Ip2_PendularMat_PendularMat_PendularPhys::report(const std::string& what, const Interaction& I)
@@ -207,7 +247,7 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		const auto* state = dynamic_cast<const PendularState*>(bm.first->state.get());
 		if (state && state->film > 0 && !bm.second->filmMode)
 			throw std::invalid_argument("PendularState.film = " + capillary::format_value(state->film) + " m^3 on body " + std::to_string(bm.first->id)
-			                            + ", whose material has liquid = '" + bm.second->liquid + "'; films need liquid = 'film'");
+			                            + ", whose material has liquid = '" + bm.second->liquid + "'; films need liquid = 'film' or 'bonds'");
 	}
 	phys->wet = m1.wet && m2.wet;
 	if (phys->wet) {
@@ -257,14 +297,17 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setLiquid(
 		phys->viscousIndex   = phys->eta > 0 ? int(m1.viscousId) : -1;
 		phys->viscousSmin    = m1.viscousSmin;
 		phys->dynamicRupture = m1.dynamicRupture; // both wet: validated with eta > 0
-		if (m1.filmMode != m2.filmMode) mustMatch("liquid", m1.liquid, m2.liquid);
+		if (m1.filmMode != m2.filmMode || m1.bondsMode != m2.bondsMode) mustMatch("liquid", m1.liquid, m2.liquid);
 		if (!m1.filmMode) {
 			phys->buildBridge();
 			return;
 		}
-		mustMatch("formation", m1.formation, m2.formation);
-		mustMatch("transfer", m1.transfer, m2.transfer);
+		if (!m1.bondsMode) {
+			mustMatch("formation", m1.formation, m2.formation);
+			mustMatch("transfer", m1.transfer, m2.transfer);
+		}
 		setFilm(phys, m1, body1, body2);
+		if (m1.bondsMode) setBonds(phys, m1, body1, body2);
 	}
 }
 
@@ -289,16 +332,18 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setFilm(
 			throw std::invalid_argument("PendularState.film = " + capillary::format_value(st.film) + " m^3 on body " + std::to_string(b->id)
 			                            + ", a wall or facet with filmArea = 0, which holds no liquid; give it the wettable area filmArea > 0 [m^2]");
 	}
+	// Bonds share their liquid in proportion to the diameters (Richefeu2008 section 3.2) and form at contact.
+	const capillary::Transfer transfer = m1.bondsMode ? capillary::Transfer::diameter : m1.transferId;
 	phys->film          = true;
-	phys->filmFormation = m1.filmFormation;
-	phys->transferIndex = int(m1.transferId);
+	phys->filmFormation = m1.bondsMode ? false : m1.filmFormation;
+	phys->transferIndex = int(transfer);
 	// V* range: the model's domain (Plausible with extrapolate), and the exact transfer table's.
 	Real r1, r2;
 	capillary::equivalent_pair(phys->R1, phys->R2, r1, r2);
 	const Real               R = capillary::harmonic_mean_radius(r1, r2); // of V* = V/R^3
 	const capillary::Domain& d = capillary::info(capillary::Model(phys->modelIndex)).domain;
 	Real vstarMin = phys->extrapolate ? capillary::Plausible::vstar_min : d.vstar_min, vstarMax = phys->extrapolate ? capillary::Plausible::vstar_max : d.vstar_max;
-	if (m1.transferId == capillary::Transfer::exact) {
+	if (transfer == capillary::Transfer::exact) {
 		vstarMin = math::max(vstarMin, math::exp(capillary::yltable::lnv_min));
 		vstarMax = math::min(vstarMax, math::exp(capillary::yltable::lnv_max));
 	}
@@ -315,12 +360,29 @@ void Ip2_PendularMat_PendularMat_PendularPhys::setFilm(
 	try {
 		capillary::transfer_ratio(capillary::Transfer(phys->transferIndex), phys->R1, phys->R2, phys->Vb, phys->bridge.rupture, phys->theta1, phys->theta2);
 	} catch (const std::exception& e) {
-		throw std::invalid_argument("PendularMat.transfer = '" + m1.transfer + "' cannot split this pair's bridges (PendularMat.theta " + capillary::format_value(phys->theta1)
+		throw std::invalid_argument("PendularMat.transfer = '" + std::string(capillary::transfer_rules()[int(transfer)].name) + "' cannot split this pair's bridges (PendularMat.theta " + capillary::format_value(phys->theta1)
 		                            + " and " + capillary::format_value(phys->theta2) + " rad, radii " + capillary::format_value(phys->R1) + " and "
 		                            + capillary::format_value(phys->R2) + " m): " + e.what() + "; another rule: " + capillary::transfer_names());
 	}
 	phys->Vb = 0;
 	phys->viscous.reset();
+}
+
+// Bonds mode: the pair's flags from the scene's PendularBonds (Richefeu2008 section 2.4); its volume
+// comes from the engine's sharing or, at a new contact, from the free liquid of its bodies.
+void Ip2_PendularMat_PendularMat_PendularPhys::setBonds(
+        const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const
+{
+	if (capillary::info(capillary::Model(phys->modelIndex)).own_rupture)
+		throw std::invalid_argument("PendularMat.liquid = 'bonds' shares the liquid by the debonding distance of the rupture rule; model '" + m1.model
+		                            + "' has its own range instead; use another model (the closed forms with rupture lian, willett or willett_elskamp)");
+	const PendularBonds* engine = PendularBonds::of(scene);
+	if (!engine)
+		throw std::invalid_argument("PendularMat.liquid = 'bonds' needs a PendularBonds engine after PendularCheck, which shares the liquid and "
+		                            "places the liquid of broken bonds (e.g. yade_capillary.scene.engines(extra=[PendularBonds()]))");
+	phys->bonds         = true;
+	phys->keptDry       = engine->keepsDry(body1->id, body2->id);
+	phys->bondFormation = engine->formsAtContact(body1->id, body2->id);
 }
 
 } // namespace yade

@@ -31,6 +31,9 @@ public:
 	PairDt takeCriticalDt();
 	FUNCTOR2D(PendularMat, PendularMat);
 	DECLARE_LOGGER;
+	// Sets the contact parameters of every real interaction of the current scene again from its materials
+	// (and the pair tables); returns how many. Python: updateContacts.
+	long updateContacts();
 	// Checks the values of the pair tables (frictionAngle, rollingFriction, en) when one is assigned.
 	void postLoad(Ip2_PendularMat_PendularMat_PendularPhys&);
 
@@ -38,6 +41,7 @@ private:
 	void setContact(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void setLiquid(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const PendularMat& m2, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void setFilm(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
+	void setBonds(const shared_ptr<PendularPhys>& phys, const PendularMat& m1, const shared_ptr<Body>& body1, const shared_ptr<Body>& body2) const;
 	void report(const std::string& message, const Interaction& I);
 	// Written from InteractionLoop's OpenMP threads, hence the locks.
 	std::mutex  errorMutex, dtMutex;
@@ -71,6 +75,12 @@ public:
 		     "whatever their distance): the stability limit of YADE's leapfrog for the normal and the tangential spring-dashpot, "
 		     "dt_c = (2/w0)(sqrt(1+z^2) - z), w0^2 = k/m, z = c/(2 sqrt(k m)); tangential mass 1/(1/m + r^2/I) per dynamic sphere. "
 		     "See yade_capillary.scene.stable_dt.")
+		.def("updateContacts", &Ip2_PendularMat_PendularMat_PendularPhys::updateContacts,
+		     "Set the contact parameters (kn, cn, ks, cs, friction, rolling friction, normalDamping, friction law) of every existing "
+		     "interaction of two PendularMat bodies of the current scene again from their materials and the pair tables, as for a new "
+		     "interaction, e.g. after changing PendularMat.frictionAngle (Richefeu2008 section 3.2.1: consolidated without friction, then "
+		     "mu = 0.4); the liquid bridges and the tangential forces stay. Returns the number of interactions updated. Not while the "
+		     "simulation runs; ValueError if a pair's parameters are refused (none is changed then).")
 	);
 	// clang-format on
 };

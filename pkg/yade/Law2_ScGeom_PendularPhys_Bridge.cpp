@@ -4,6 +4,8 @@
 #include "CriticalDt.hpp"
 #include "film.hpp"
 
+#include <algorithm>
+
 namespace yade {
 
 YADE_PLUGIN((Law2_ScGeom_PendularPhys_Bridge));
@@ -60,18 +62,35 @@ bool Law2_ScGeom_PendularPhys_Bridge::filmsTouch(const PendularPhys& phys, const
 
 void Law2_ScGeom_PendularPhys_Bridge::askFormation(PendularPhys& phys, const PendularKinematics& k)
 {
-	// Shi & McCarthy (Elskamp2018 eq. 8; eq. 9-10 with a wall) from the films at the start of the step.
 	const FilmPair       ids    = filmPair(phys, k.id1, k.id2);
 	const PendularState& sphere = filmOf(scene, ids.sphere);
 	const PendularState& other  = filmOf(scene, ids.other);
-	const Real           fromSphere = capillary::film_contribution(phys.R1, phys.R2, sphere.film);
-	const Real           fromOther  = math::isinf(phys.R2) ? capillary::wall_film_contribution(phys.R1, other.thickness(phys.R2))
-	                                                       : capillary::film_contribution(phys.R2, phys.R1, other.film);
+	Real                 fromSphere, fromOther;
+	if (phys.bonds) {
+		// A new bond takes all the free liquid of both bodies (Richefeu2008 section 3.2, protocol 2),
+		// shared among the bonds formed on a body in the same step (settleFilms).
+		if (!phys.bondFormation) return;
+		fromSphere = sphere.film;
+		fromOther  = other.holds(phys.R2) ? other.film : 0;
+	} else {
+		// Shi & McCarthy (Elskamp2018 eq. 8; eq. 9-10 with a wall) from the films at the start of the step.
+		fromSphere = capillary::film_contribution(phys.R1, phys.R2, sphere.film);
+		fromOther  = math::isinf(phys.R2) ? capillary::wall_film_contribution(phys.R1, other.thickness(phys.R2))
+		                                  : capillary::film_contribution(phys.R2, phys.R1, other.film);
+	}
 	// Too little liquid for a bridge (even before sharing the films): no request, the pair stays dry.
 	if (!(fromSphere + fromOther >= phys.VbMin)) return;
 	phys.pending = true;
 	const std::lock_guard<std::mutex> lock(filmMutex);
 	formations.push_back({ &phys, k.id1, k.id2, phys.swapped ? fromOther : fromSphere, phys.swapped ? fromSphere : fromOther, k.owned });
+}
+
+std::vector<Law2_ScGeom_PendularPhys_Bridge::FilmReturn> Law2_ScGeom_PendularPhys_Bridge::takeBondReturns()
+{
+	std::vector<FilmReturn> out;
+	out.swap(bondReturns);
+	std::sort(out.begin(), out.end(), [](const FilmReturn& a, const FilmReturn& b) { return std::make_pair(a.id, a.partner) < std::make_pair(b.id, b.partner); });
+	return out;
 }
 
 Law2_ScGeom_PendularPhys_Bridge::OverlapReport Law2_ScGeom_PendularPhys_Bridge::takeOverlaps()

@@ -97,13 +97,22 @@ private:
 		Real          take1, take2; // Shi & McCarthy's volumes from the films of bodies id1, id2 [m^3]
 		bool          owned;
 	};
+
+public:
+	// The liquid of a broken film-mode bridge or bond for body `id`, whose partner was `partner`.
 	struct FilmReturn {
 		Body::id_t id;
 		Real       volume;
+		Body::id_t partner;
 	};
+	// The shares of the bonds broken in this step (liquid='bonds'), for PendularBonds to place; in the
+	// order of the bodies and their partners, whatever the order of the threads.
+	std::vector<FilmReturn> takeBondReturns();
+
+private:
 	std::mutex                 filmMutex;
 	std::vector<FilmFormation> formations;
-	std::vector<FilmReturn>    returns;
+	std::vector<FilmReturn>    returns, bondReturns;
 	// The sphere R1 of a bridge and its other body (a sphere R2, or a wall or facet): bodies 1 and 2
 	// unless swapped.
 	struct FilmPair {
@@ -132,7 +141,7 @@ public:
 		((OpenMPAccumulator<Real>, liquidVolume, , Attr::readonly, "Liquid volume in the bridges that exist now [m^3]. Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidFormed, , Attr::readonly, "Liquid volume put into bridges since the start [m^3] (fixed volume per bridge, Gladkyy2014). Saved by O.save."))
 		((OpenMPAccumulator<Real>, liquidReleased, , Attr::readonly, "Liquid volume of bridges broken since the start [m^3]; liquidFormed - liquidReleased = liquidVolume. Saved by O.save."))
-		((Real, liquidRemoved, 0, Attr::readonly, "liquid='film': liquid that left the scene with erased bodies (O.bodies.erase) [m^3]: their films and their shares of their bridges. films + bridges + liquidRemoved is constant (liquidTotals()). Saved by O.save.")),
+		((Real, liquidRemoved, 0, Attr::readonly, "liquid='film' or 'bonds': liquid that left the scene with erased bodies (O.bodies.erase) [m^3]: their films and their shares of their bridges. films + bridges + liquidRemoved is constant (liquidTotals()). Saved by O.save.")),
 		/*ctor*/,
 		/*py*/
 		.def("formBridge", &Law2_ScGeom_PendularPhys_Bridge::formBridge, (boost::python::arg("id1"), boost::python::arg("id2"), boost::python::arg("pastRupture") = 0.0),
@@ -141,7 +150,7 @@ public:
 		     "step before the save stretched past its rupture distance, which the law breaks at the next step): restores a bridge of "
 		     "a saved state (shearcell.load_state). Only for a wet fixed-volume pair without a bridge, not while the simulation runs; "
 		     "ValueError otherwise.")
-		.def("liquidTotals", &Law2_ScGeom_PendularPhys_Bridge::liquidTotals, "The liquid of the current scene [m^3] as a dict: films (sum of PendularState.film over the bodies), bridges (sum of Vb over the film-mode bridges that exist), removed (liquidRemoved), total (their sum, constant in film mode) and fixedBridges (the bridges of fixed-volume materials, not part of total)."));
+		.def("liquidTotals", &Law2_ScGeom_PendularPhys_Bridge::liquidTotals, "The liquid of the current scene [m^3] as a dict: films (sum of PendularState.film over the bodies), bridges (sum of Vb over the film-mode bridges and bonds that exist), removed (liquidRemoved), total (their sum, constant in film mode) and fixedBridges (the bridges of fixed-volume materials, not part of total)."));
 	// clang-format on
 };
 REGISTER_SERIALIZABLE(Law2_ScGeom_PendularPhys_Bridge);
@@ -200,8 +209,10 @@ template <class Phys> inline bool Law2_ScGeom_PendularPhys_Bridge::breakBridge(P
 			const auto*    otherState = static_cast<const PendularState*>(Body::byId(ids.other, scene)->state.get());
 			const Real     toSphere   = sphereShare(phys, otherState->holds(phys.R2));
 			const std::lock_guard<std::mutex> lock(filmMutex);
-			returns.push_back({ ids.sphere, toSphere });
-			returns.push_back({ ids.other, phys.Vb - toSphere });
+			// A bond's liquid goes where PendularBonds' protocol sends it (Richefeu2008 sections 2.4, 3.2, 4.2).
+			std::vector<FilmReturn>& to = phys.bonds ? bondReturns : returns;
+			to.push_back({ ids.sphere, toSphere, ids.other });
+			to.push_back({ ids.other, phys.Vb - toSphere, ids.sphere });
 		}
 	}
 	return false;

@@ -3,6 +3,7 @@
 #include "PendularCheck.hpp"
 #include "Ip2_PendularMat_PendularMat_PendularPhys.hpp"
 #include "Law2_ScGeom_PendularPhys_Bridge.hpp"
+#include "PendularBonds.hpp"
 #include "conventions.hpp"
 
 #include <core/InteractionLoop.hpp>
@@ -60,6 +61,17 @@ void PendularCheck::action()
 					law->settleFilms(scene);
 				} catch (const std::invalid_argument& e) {
 					if (message.empty()) message = e.what();
+				}
+				if (!PendularBonds::of(scene)) {
+					// The bonds broken in this step have no engine to place their liquid: it stays on their particles.
+					const auto orphans = law->takeBondReturns();
+					for (const auto& r : orphans) {
+						if (scene->bodies->exists(r.id)) pendular::filmOf(scene, r.id).film += r.volume;
+						else law->liquidRemoved += r.volume;
+					}
+					if (!orphans.empty() && message.empty())
+						message = "PendularMat.liquid = 'bonds' needs a PendularBonds engine after PendularCheck, which places the liquid of broken "
+						          "bonds; the liquid of the bonds broken in this step stays on their particles (PendularState.film)";
 				}
 				law->zeroEmptyTotals();
 				checkOverlaps(*law, fresh);

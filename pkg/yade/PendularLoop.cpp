@@ -374,6 +374,20 @@ void PendularLoop::syncScene(Scene* scene, bool drop, bool all)
 
 void PendularLoop::syncCurrent(bool drop, bool all) { syncScene(Omega::instance().getScene().get(), drop, all); }
 
+void PendularLoop::forgetPotential(Scene* scene)
+{
+	for (const auto& e : scene->engines) {
+		auto* loop = dynamic_cast<PendularLoop*>(e.get());
+		if (!loop) continue;
+		for (auto& slot : loop->state.pairs.slots)
+			if (slot.potential()) {
+				slot.record   = Slot::none;
+				slot.gapBound = -std::numeric_limits<float>::infinity();
+			}
+		loop->state.pairs.workValid = false;
+	}
+}
+
 boost::python::dict PendularLoop::memory() const { return pendular::loopMemory(); }
 
 } // namespace yade

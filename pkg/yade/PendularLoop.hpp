@@ -45,6 +45,10 @@ public:
 	static void syncScene(Scene* scene, bool drop, bool all = true);
 	// The same for the current scene (Python: PendularLoop.sync).
 	static void syncCurrent(bool drop, bool all = true);
+	// Forgets what the PendularLoop engines of `scene` know of its potential interactions (their bounds
+	// on the gap, the list of entries to visit): for code that makes potential interactions real between
+	// passes (PendularBonds), which the pass would otherwise skip as apart.
+	static void forgetPotential(Scene* scene);
 	// Gives the records back to the interactions (as sync with drop) and frees every array the PendularLoop
 	// engines of `scene` hold for it, for a scene about to be replaced (O.reset, O.load: yade_capillary.objects
 	// wraps them). YADE 2023.02a does not destroy the engines of a scene that O.reset replaces (not even its

@@ -107,7 +107,8 @@ void PendularMat::validate()
 	} catch (const std::invalid_argument&) {
 		throw std::invalid_argument(c + ".viscousNormal = '" + viscousNormal + "' is unknown; allowed: " + capillary::normal_viscous_names());
 	}
-	if (liquid != "fixed" && liquid != "film") throw std::invalid_argument(c + ".liquid = '" + liquid + "' is unknown; allowed: fixed, film");
+	if (liquid != "fixed" && liquid != "film" && liquid != "bonds")
+		throw std::invalid_argument(c + ".liquid = '" + liquid + "' is unknown; allowed: fixed, film, bonds");
 	if (formation != "contact" && formation != "films")
 		throw std::invalid_argument(c + ".formation = '" + formation + "' is unknown; allowed: contact, films (when the liquid films touch)");
 	capillary::Transfer newTransfer;
@@ -144,7 +145,8 @@ void PendularMat::validate()
 	ruptureId      = parsed.first;
 	dynamicRupture = parsed.second;
 	viscousId      = newViscous;
-	filmMode       = liquid == "film";
+	filmMode       = liquid == "film" || liquid == "bonds";
+	bondsMode      = liquid == "bonds";
 	filmFormation  = formation == "films";
 	transferId     = newTransfer;
 }

@@ -11,7 +11,7 @@ namespace yade {
 // utils.wall, utils.facet, ...).
 // clang-format off
 #define PENDULAR_STATE_ATTRS \
-	((Real, film, 0, Attr::triggerPostLoad, "Free liquid on the body [m^3], [0, 1e9] (at most a body of 1 km): the film, not counting the liquid in its bridges. Only with PendularMat.liquid = 'film' (an error at the first interaction otherwise). Written by the bridges at the end of each step (PendularCheck).")) \
+	((Real, film, 0, Attr::triggerPostLoad, "Free liquid on the body [m^3], [0, 1e9] (at most a body of 1 km): the film, not counting the liquid in its bridges. Only with PendularMat.liquid = 'film' or 'bonds' (an error at the first interaction otherwise). Written by the bridges at the end of each step (PendularCheck, PendularBonds).")) \
 	((Real, filmArea, 0, Attr::triggerPostLoad, "Walls and facets: the wettable area [m^2], 0 or [1e-18, 1e6], over which their film spreads (film thickness W = film/filmArea, Elskamp2018 eq. 10). 0 (the default): the wall holds no liquid, gives none to a bridge and, at rupture, leaves the whole bridge to the sphere. Unused on spheres."))
 // clang-format on
 

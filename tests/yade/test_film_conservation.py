@@ -14,6 +14,7 @@ from yade.utils import sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines, stable_dt
+from liquid_checks import conserved
 from testing import Checker
 
 loop = sys.argv[1] if len(sys.argv) > 1 else "fused"
@@ -49,13 +50,7 @@ ck.true(total0 > 0, "some liquid to conserve")
 
 
 def check(where):
-    t = law.liquidTotals()
-    ck.close(t["total"], total0, 1e-12, where + ": films + bridges + removed", "the liquid at the start (conservation)")
-    films = [b.state.film for b in O.bodies if b]
-    ck.true(min(films) >= 0 and all(math.isfinite(f) for f in films), where + ": every film finite and >= 0")
-    forces = [O.forces.f(b.id).norm() for b in O.bodies if b]
-    ck.true(all(math.isfinite(f) for f in forces), where + ": every force finite")
-    return t
+    return conserved(ck, law, total0, where)
 
 
 formed = 0
