@@ -1,0 +1,321 @@
+"""Richefeu et al. 2008's direct shear test (section 3.2) inside yade: a split cylinder of glass beads with
+the liquid shared over bonds (PendularMat.liquid = 'bonds'), its preparation, the shear at constant normal
+stress, and the Mohr-Coulomb fit of the residual shear stress.
+
+The cell: a cylinder of diameter D split at h_lower (the lower part fixed on a bottom wall, the upper ring
+moving along x at the shear speed), closed by a lid that the normal stress presses down (a wall of weight
+sigma A, free along z only, moving along x with the ring). Preparation (section 3.2.1): the spheres settle
+under gravity without bonds and without friction; the liquid of the water content is shared over every
+eligible pair (PendularBonds); the lid consolidates the sample without friction until the solid fraction
+reaches phi (or stops); then the friction is set to mu and the upper part moves.
+
+Every parameter lives in CONFIGS (what the paper leaves open is chosen there and in docs/richefeu.md);
+scripts only choose names.
+"""
+import csv
+import json
+import math
+import os
+import random
+import time
+
+# Richefeu 2008 section 3.2.1: Ø46 mm, upper part 10 mm, lower 15 mm; 7307 spheres of 2, 1.5 and 1 mm in
+# proportions 50/30/20 % by number (they fill Ø46 x 20 mm at phi = 0.6, the sample of the experiments; by
+# volume the same sample would need about 16 700 spheres). Glass: rho 2500 kg/m^3; water: gamma 0.073 N/m,
+# theta = 0 (section 2.3). Chosen (not printed): kn = 2000 N/m per contact (stiffness level kn/(sigma d) >= 1500
+# at 900 Pa), approach-only damping at 0.3 of critical for the lightest pair (eq. 3), a tangential spring of
+# 2/7 kn (the viscous friction of eq. 12 would need a step 50 times smaller to reach its Coulomb cap at the shear
+# speed), walls as frictional as the beads; the shear speed from the inertial number (docs/richefeu.md).
+PAPER = dict(D=0.046, h_lower=0.015, h_upper=0.010, n=7307, diameters=(2e-3, 1.5e-3, 1e-3), fractions=(0.5, 0.3, 0.2), rho=2500.0,
+             kn=2000.0, damping=0.3, mu=0.4, gamma=0.073, theta=0.0, phi=0.6, inertial=2e-3, shear=4e-3, residual_from=2e-3,
+             fill_height=0.042, settle_s=0.35, consolidate_s=0.15, dt_safety=0.2, records=200, seed=1)
+# Same particles in a cell of 16 mm (about 890 spheres), sheared faster and less far: a regression check of the
+# CI, not a reproduction.
+CI = dict(PAPER, D=0.016, n=884, inertial=1e-2, shear=2e-3, residual_from=1e-3, records=100)
+CONFIGS = {"paper": PAPER, "ci": CI}
+GRAVITY = 9.81
+
+
+def _sizes(cfg, rng):
+    """Diameters of the n spheres in the number fractions, largest first."""
+    n = cfg["n"]
+    counts = [int(round(f * n)) for f in cfg["fractions"]]
+    counts[-1] = n - sum(counts[:-1])
+    out = []
+    for d, c in zip(cfg["diameters"], counts):
+        out += [d] * c
+    return out
+
+
+def _fill(cfg, rng):
+    """Random positions without overlap in the cylinder (largest spheres first), up to fill_height."""
+    R, H = cfg["D"] / 2, cfg["fill_height"]
+    cell = max(cfg["diameters"])
+    grid, placed = {}, []
+    for d in _sizes(cfg, rng):
+        r = d / 2
+        for _ in range(100000):
+            rho, phi = (R - r) * math.sqrt(rng.random()), 2 * math.pi * rng.random()
+            p = (rho * math.cos(phi), rho * math.sin(phi), r + (H - 2 * r) * rng.random())
+            key = tuple(int(math.floor(c / cell)) for c in p)
+            clear = True
+            for dx in (-1, 0, 1):
+                for dy in (-1, 0, 1):
+                    for dz in (-1, 0, 1):
+                        for q, rq in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), ()):
+                            if (p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2 < (r + rq) ** 2:
+                                clear = False
+                                break
+                        if not clear:
+                            break
+                    if not clear:
+                        break
+                if not clear:
+                    break
+            if clear:
+                grid.setdefault(key, []).append((p, r))
+                placed.append((p, r))
+                break
+        else:
+            raise ValueError("directshear: no room for sphere %d in a fill of %g m; raise fill_height" % (len(placed), H))
+    return placed
+
+
+def _materials(cfg):
+    from yade import O
+    from yade.wrapper import PendularMat
+    d_min = min(cfg["diameters"])
+    m_pair = cfg["rho"] * math.pi / 6 * d_min ** 3 / 2  # the lightest pair's reduced mass
+    cn = cfg["damping"] * 2 * math.sqrt(m_pair * cfg["kn"])
+    # Material values combine in series: twice the pair's.
+    contact = dict(kn=2 * cfg["kn"], cn=2 * cn, ks=2 * cfg["kn"] * 2 / 7, cs=0.0, density=cfg["rho"], frictionAngle=0.0,
+                   normalDamping="approach")
+    beads = PendularMat(Vb=1e-6, gamma=cfg["gamma"], theta=cfg["theta"], model="richefeu", rupture="lian", liquid="bonds",
+                        label="beads", **contact)
+    beads.wet = True
+    walls = PendularMat(label="walls", **contact)
+    return O.materials.append(beads), O.materials.append(walls)
+
+
+def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="fused"):
+    """The cell with its loose spheres (no liquid, no friction); returns the info dict of the scene."""
+    from yade import O, geom
+    from yade.utils import sphere, wall
+    from yade.wrapper import PendularBonds
+    from .scene import engines, stable_dt
+    cfg = dict(CONFIGS[config])
+    rng = random.Random(cfg["seed"] if seed is None else seed)
+    O.reset()
+    beads, walls = _materials(cfg)
+    R = cfg["D"] / 2
+    lower = O.bodies.append(geom.facetCylinder((0, 0, cfg["h_lower"] / 2), R, cfg["h_lower"], segmentsNumber=48, wallMask=4, material=walls))
+    top = cfg["h_lower"] + 2 * cfg["fill_height"]  # the ring reaches above the loose fill; only its lowest h_upper meets the sample
+    upper = O.bodies.append(geom.facetCylinder((0, 0, (cfg["h_lower"] + top) / 2), R, top - cfg["h_lower"], segmentsNumber=48, wallMask=4,
+                                               material=walls))
+    bottom = O.bodies.append(wall(0, axis=2, sense=1, material=walls))
+    spheres = [O.bodies.append(sphere(p, r, material=beads)) for p, r in _fill(cfg, rng)]
+    bonds = PendularBonds(protocol=protocol, dryFraction=dry_fraction, seed=cfg["seed"], label="bonds")
+    O.engines = engines(gravity=(0, 0, -GRAVITY), loop=loop, extra=[bonds])
+    # The collider lists every pair within a quarter of the largest diameter: longer than the debonding
+    # distance of the sharing up to w of a few percent (PendularBonds refuses a shorter one).
+    [e for e in O.engines if e.label == "collider"][0].verletDist = max(cfg["diameters"]) / 4
+    O.dt = stable_dt(cfg["dt_safety"])
+    return dict(config=config, cfg=cfg, lower=lower, upper=upper, bottom=bottom, lid=None, spheres=spheres, protocol=protocol,
+                dry_fraction=dry_fraction)
+
+
+def _law():
+    from yade import O
+    return [f for e in O.engines if hasattr(e, "lawDispatcher") for f in e.lawDispatcher.functors][0]
+
+
+def _ip2():
+    from yade import O
+    return [f for e in O.engines if hasattr(e, "physDispatcher") for f in e.physDispatcher.functors][0]
+
+
+def _solid(info):
+    from yade import O
+    return sum(4 / 3 * math.pi * O.bodies[i].shape.radius ** 3 for i in info["spheres"])
+
+
+def solid_fraction(info):
+    """The spheres' volume over the cylinder below the lid [-]."""
+    from yade import O
+    A = math.pi * info["cfg"]["D"] ** 2 / 4
+    return _solid(info) / (A * O.bodies[info["lid"]].state.pos[2])
+
+
+def settle(info, log=print):
+    """Gravity settling without bonds and friction (settle_s)."""
+    from yade import O
+    n = int(info["cfg"]["settle_s"] / O.dt)
+    O.run(n, True)
+    log("settled: %d steps, highest sphere at %.2f mm" % (n, 1e3 * max(O.bodies[i].state.pos[2] + O.bodies[i].shape.radius for i in info["spheres"])))
+
+
+def wet(info, w):
+    """Shares the liquid of water content w over the eligible pairs (Richefeu 2008 eq. 13-14)."""
+    from . import bonds
+    if w > 0:
+        bonds.share_water(w)
+
+
+def consolidate(info, sigma, log=print):
+    """The lid of weight sigma A on the sample; without friction until phi is reached (or the lid stops),
+    then friction mu on every contact (Ip2.updateContacts), and a last consolidate_s / 3 at rest."""
+    from yade import O
+    from yade.utils import wall
+    cfg = info["cfg"]
+    A = math.pi * cfg["D"] ** 2 / 4
+    ztop = max(O.bodies[i].state.pos[2] + O.bodies[i].shape.radius for i in info["spheres"])
+    walls = [m for m in O.materials if m.label == "walls"][0]
+    lid = O.bodies.append(wall(ztop + 1e-4, axis=2, sense=-1, material=walls))
+    b = O.bodies[lid]
+    b.dynamic = True
+    b.state.mass = sigma * A / GRAVITY  # its weight is the normal stress
+    b.state.inertia = (1, 1, 1)
+    b.state.blockedDOFs = "xyXYZ"
+    info["lid"], info["sigma"] = lid, sigma
+    chunk = max(1, int(2e-3 / O.dt))
+    t_end = O.time + cfg["consolidate_s"]
+    while O.time < t_end and solid_fraction(info) < cfg["phi"]:
+        O.run(chunk, True)
+    phi0 = solid_fraction(info)
+    for m in O.materials:
+        if m.label in ("beads", "walls"):
+            m.frictionAngle = math.atan(cfg["mu"])
+    n = _ip2().updateContacts()
+    # At rest with friction: the lid's contact stress, sampled every chunk, averages to its weight.
+    samples = []
+    for _ in range(max(1, int(cfg["consolidate_s"] / 3 / (chunk * O.dt)))):
+        O.run(chunk, True)
+        samples.append(O.forces.f(lid)[2] / A)
+    info["sigma_rest_Pa"] = sum(samples[len(samples) // 2:]) / len(samples[len(samples) // 2:])
+    log("consolidated at %g Pa: phi %.4f without friction, %.4f with mu = %g (%d contacts updated), lid stress at rest %.1f Pa"
+        % (sigma, phi0, solid_fraction(info), cfg["mu"], n, info["sigma_rest_Pa"]))
+    return phi0
+
+
+def shear_speed(cfg, sigma):
+    """The upper part's speed [m/s] for the configuration's inertial number I = (v / h_b) d sqrt(rho / sigma),
+    with a shear band h_b of 10 mean diameters."""
+    return cfg["inertial"] * 10 * math.sqrt(sigma / cfg["rho"])
+
+
+def shear(info, outdir, v=None, log=print):
+    """Moves the upper ring and the lid at v along x over cfg['shear']; writes shear.csv; returns the rows."""
+    from yade import O
+    from . import bonds
+    cfg = info["cfg"]
+    A = math.pi * cfg["D"] ** 2 / 4
+    v = shear_speed(cfg, info["sigma"]) if v is None else v
+    info["v"] = v
+    upper = list(info["upper"]) + [info["lid"]]
+    for i in info["upper"]:
+        O.bodies[i].state.vel = (v, 0, 0)
+    O.bodies[info["lid"]].state.vel = (v, 0, O.bodies[info["lid"]].state.vel[2])
+    steps = int(cfg["shear"] / v / O.dt)
+    every = max(1, steps // cfg["records"])
+    law = _law()
+    rows, x0 = [], O.bodies[info["upper"][0]].state.pos[0]
+    t0 = time.time()
+    for k in range(cfg["records"]):
+        O.run(every, True)
+        fx = sum(O.forces.f(i)[0] for i in upper)
+        rows.append(dict(displacement_m=O.bodies[info["upper"][0]].state.pos[0] - x0, tau_Pa=-fx / A,
+                         sigma_lid_Pa=O.forces.f(info["lid"])[2] / A, lid_z_m=O.bodies[info["lid"]].state.pos[2],
+                         phi=solid_fraction(info), bond_coordination=bonds.coordination(), liquid_m3=law.liquidTotals()["total"]))
+    info["wall_s"] = time.time() - t0
+    info["steps"] = steps
+    os.makedirs(outdir, exist_ok=True)
+    with open(os.path.join(outdir, "shear.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    return rows
+
+
+def residual(rows, start):
+    """Mean residual shear stress [Pa] from displacement `start` on, and its standard error from 5 block means."""
+    taus = [r["tau_Pa"] for r in rows if r["displacement_m"] >= start]
+    k = 5
+    blocks = [taus[i * len(taus) // k:(i + 1) * len(taus) // k] for i in range(k)]
+    means = [sum(b) / len(b) for b in blocks if b]
+    mean = sum(means) / len(means)
+    se = math.sqrt(sum((m - mean) ** 2 for m in means) / (len(means) - 1) / len(means))
+    return mean, se
+
+
+def prepare(config, path, seed=None, loop="fused", log=print):
+    """Builds and settles a cell; saves it to `path` (a YADE state, .yade.gz) with its info (path + '.json'),
+    so that the runs of a series start from the same packing."""
+    from yade import O
+    info = build(config, seed=seed, loop=loop)
+    settle(info, log)
+    O.save(path)
+    with open(path + ".json", "w") as f:
+        json.dump({k: v for k, v in info.items() if k != "cfg"}, f)
+    return info
+
+
+def load(path, protocol="particles", dry_fraction=0.0):
+    """A cell saved by prepare, with the protocol and the fraction of dry pairs of this run."""
+    from yade import O
+    from . import patches
+    O.load(path)
+    patches.install()
+    with open(path + ".json") as f:
+        info = json.load(f)
+    info["cfg"] = dict(CONFIGS[info["config"]])
+    b = [e for e in O.engines if e.label == "bonds"][0]
+    b.protocol, b.dryFraction = protocol, dry_fraction
+    info["protocol"], info["dry_fraction"] = protocol, dry_fraction
+    return info
+
+
+def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, v=None, seed=None, loop="fused", state=None, log=print):
+    """One direct shear test: build and settle (or load `state`, saved by prepare), wet to water content w,
+    consolidate under sigma [Pa], shear. Writes shear.csv and summary.json to outdir; returns the summary."""
+    from yade import O
+    t0 = time.time()
+    if state:
+        info = load(state, protocol, dry_fraction)
+    else:
+        info = build(config, protocol, dry_fraction, seed, loop)
+        settle(info, log)
+    iter0 = O.iter
+    wet(info, w)
+    z0 = _zbond()
+    phi0 = consolidate(info, sigma, log)
+    rows = shear(info, outdir, v, log)
+    tau, se = residual(rows, info["cfg"]["residual_from"])
+    summary = dict(config=config, w=w, sigma_Pa=sigma, protocol=protocol, dry_fraction=dry_fraction, tau_residual_Pa=tau, tau_se_Pa=se,
+                   phi_consolidated=phi0, phi_end=rows[-1]["phi"], bond_coordination_wet=z0, bond_coordination_end=rows[-1]["bond_coordination"],
+                   shear_speed_m_s=info["v"], inertial_number=info["v"] / 10 * math.sqrt(info["cfg"]["rho"] / sigma),
+                   dt_s=O.dt, spheres=len(info["spheres"]), particle_steps=len(info["spheres"]) * (O.iter - iter0), wall_s=time.time() - t0)
+    with open(os.path.join(outdir, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    log("w %g, sigma %g Pa: tau %.2f +- %.2f Pa, z %.2f, %.0f s" % (w, sigma, tau, se, z0, summary["wall_s"]))
+    return summary
+
+
+def _zbond():
+    from . import bonds
+    return bonds.coordination()
+
+
+def mohr_coulomb(sigmas, taus, errors):
+    """Weighted least-squares line tau = c + sigma tan(phi) [Pa]: returns c, its standard error, phi [deg] and its
+    standard error (from the errors of tau, at least their scatter about the line). Needs two normal stresses or more."""
+    if len(set(sigmas)) < 2:
+        raise ValueError("mohr_coulomb: sigmas = %r; the fit needs at least two different normal stresses" % (list(sigmas),))
+    wts = [1 / e ** 2 for e in errors]
+    S, Sx, Sy = sum(wts), sum(w * x for w, x in zip(wts, sigmas)), sum(w * y for w, y in zip(wts, taus))
+    Sxx, Sxy = sum(w * x * x for w, x in zip(wts, sigmas)), sum(w * x * y for w, x, y in zip(wts, sigmas, taus))
+    det = S * Sxx - Sx * Sx
+    slope, c = (S * Sxy - Sx * Sy) / det, (Sxx * Sy - Sx * Sxy) / det
+    chi2 = sum(w * (y - c - slope * x) ** 2 for w, x, y in zip(wts, sigmas, taus))
+    scale = max(1.0, chi2 / (len(sigmas) - 2)) if len(sigmas) > 2 else 1.0
+    se_c, se_slope = math.sqrt(Sxx / det * scale), math.sqrt(S / det * scale)
+    return c, se_c, math.degrees(math.atan(slope)), math.degrees(se_slope / (1 + slope ** 2))
