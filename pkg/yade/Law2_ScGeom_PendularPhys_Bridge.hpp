@@ -108,6 +108,8 @@ public:
 	// The shares of the bonds broken in this step (liquid='bonds'), for PendularBonds to place; in the
 	// order of the bodies and their partners, whatever the order of the threads.
 	std::vector<FilmReturn> takeBondReturns();
+	// Liquid [m^3] back to body `id`'s film, or to liquidRemoved if the body no longer exists. Serial.
+	void giveBack(Scene* scene, Body::id_t id, Real volume);
 
 private:
 	std::mutex                 filmMutex;

@@ -81,10 +81,8 @@ void Law2_ScGeom_PendularPhys_Bridge::settleFilms(Scene* current)
 		}
 	}
 	formations.clear();
-	for (const auto& r : returns) {
-		if (current->bodies->exists(r.id)) filmOf(current, r.id).film += r.volume;
-		else liquidRemoved += r.volume;
-	}
+	for (const auto& r : returns)
+		giveBack(current, r.id, r.volume);
 	returns.clear();
 	if (!error.empty()) throw std::invalid_argument(error);
 }
@@ -108,11 +106,15 @@ void Law2_ScGeom_PendularPhys_Bridge::releasePair(Scene* current, Interaction& I
 	const FilmPair ids        = filmPair(*phys, id1, id2);
 	const bool     otherHolds = !current->bodies->exists(ids.other) || filmOf(current, ids.other).holds(phys->R2);
 	const Real     toSphere   = sphereShare(*phys, otherHolds);
-	for (const auto& share : { std::make_pair(ids.sphere, toSphere), std::make_pair(ids.other, phys->Vb - toSphere) }) {
-		if (current->bodies->exists(share.first)) filmOf(current, share.first).film += share.second;
-		else liquidRemoved += share.second;
-	}
+	giveBack(current, ids.sphere, toSphere);
+	giveBack(current, ids.other, phys->Vb - toSphere);
 	phys->Vb = 0;
+}
+
+void Law2_ScGeom_PendularPhys_Bridge::giveBack(Scene* current, Body::id_t id, Real volume)
+{
+	if (current->bodies->exists(id)) filmOf(current, id).film += volume;
+	else liquidRemoved += volume;
 }
 
 void Law2_ScGeom_PendularPhys_Bridge::zeroEmptyTotals()

@@ -21,7 +21,6 @@ YADE_PLUGIN((PendularBonds));
 CREATE_LOGGER(PendularBonds);
 
 namespace {
-	using pendular::filmOf;
 	using pendular::radiusOf;
 
 	const std::array<const char*, 4> protocolNames { "update", "particles", "lowest", "neighbours" };
@@ -154,9 +153,7 @@ void PendularBonds::action()
 	for (const auto& r : law.takeBondReturns())
 		place(scene, law, r.id, r.volume, r.partner);
 	// The collider's runs (YADE's InsertionSortCollider leaves InteractionContainer::iterColliderLastRun at -1).
-	long runs = 0;
-	for (const auto& e : scene->engines)
-		if (const auto* isc = dynamic_cast<const InsertionSortCollider*>(e.get())) runs += isc->numAction;
+	const long runs        = PendularLoop::colliderRuns(*scene);
 	const bool colliderRan = runs != colliderRuns;
 	colliderRuns           = runs;
 	bool due               = nSharings == 0;
@@ -324,7 +321,7 @@ void PendularBonds::place(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, 
 {
 	if (!(volume > 0)) return;
 	if (!current->bodies->exists(id)) {
-		law.liquidRemoved += volume;
+		law.giveBack(current, id, volume);
 		return;
 	}
 	const shared_ptr<Body>& body = Body::byId(id, current);
@@ -369,7 +366,7 @@ void PendularBonds::place(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, 
 		if (rest < volume) nPlaced += 1;
 	}
 	if (rest > 0) {
-		filmOf(current, id).film += rest;
+		law.giveBack(current, id, rest);
 		nFree += 1;
 	}
 }

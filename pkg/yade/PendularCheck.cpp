@@ -65,10 +65,8 @@ void PendularCheck::action()
 				if (!PendularBonds::of(scene)) {
 					// The bonds broken in this step have no engine to place their liquid: it stays on their particles.
 					const auto orphans = law->takeBondReturns();
-					for (const auto& r : orphans) {
-						if (scene->bodies->exists(r.id)) pendular::filmOf(scene, r.id).film += r.volume;
-						else law->liquidRemoved += r.volume;
-					}
+					for (const auto& r : orphans)
+						law->giveBack(scene, r.id, r.volume);
 					if (!orphans.empty() && message.empty())
 						message = "PendularMat.liquid = 'bonds' needs a PendularBonds engine after PendularCheck, which places the liquid of broken "
 						          "bonds; the liquid of the bonds broken in this step stays on their particles (PendularState.film)";

@@ -115,7 +115,7 @@ void PendularLoop::action()
 	if (!records.records.empty() && (!recording || records.scene != scene)) syncObjects(true, true);
 	records.scene           = scene;
 	loopThread              = std::this_thread::get_id();
-	const long colliderRuns = colliderRunCount();
+	const long colliderRuns = PendularLoop::colliderRuns(*scene);
 	records.reconcile(colliderRuns, *scene->interactions, state.pairs.slots, state.snapshot.particles);
 	if (sortPending && sortDisorder > 0 && ownsStep(r)) sortInteractions();
 	sortPending = false;
@@ -248,10 +248,10 @@ void PendularLoop::finishPass(const PassPlan& plan, const Resolved& r, PassCount
 
 // How many times the scene's colliders have run (InsertionSortCollider::numAction counts the steps it
 // is activated in): the only engine that recordsAllowed lets change the container during a run.
-long PendularLoop::colliderRunCount() const
+long PendularLoop::colliderRuns(const Scene& scene)
 {
 	long runs = 0;
-	for (const auto& e : scene->engines)
+	for (const auto& e : scene.engines)
 		if (const auto* collider = dynamic_cast<const InsertionSortCollider*>(e.get())) runs += collider->numAction;
 	return runs;
 }

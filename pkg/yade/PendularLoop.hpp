@@ -49,6 +49,8 @@ public:
 	// on the gap, the list of entries to visit): for code that makes potential interactions real between
 	// passes (PendularBonds), which the pass would otherwise skip as apart.
 	static void forgetPotential(Scene* scene);
+	// How many times the colliders of `scene` have run (InsertionSortCollider::numAction).
+	static long colliderRuns(const Scene& scene);
 	// Gives the records back to the interactions (as sync with drop) and frees every array the PendularLoop
 	// engines of `scene` hold for it, for a scene about to be replaced (O.reset, O.load: yade_capillary.objects
 	// wraps them). YADE 2023.02a does not destroy the engines of a scene that O.reset replaces (not even its
@@ -173,7 +175,6 @@ private:
 	bool ownsStep(const Resolved& r) const;
 	// A body that records may join: a PendularMat sphere of this scene's subdomain (as gathered this step).
 	bool sphereHere(Body::id_t id) const { return state.snapshot.sphereHere(id, scene->subdomain); }
-	long colliderRunCount() const;
 	void sortInteractions();
 	void syncObjects(bool drop, bool all);
 
