@@ -36,7 +36,7 @@ CONFIGS = {"paper": PAPER, "ci": CI}
 GRAVITY = 9.81
 
 
-def _sizes(cfg, rng):
+def _sizes(cfg):
     """Diameters of the n spheres in the number fractions, largest first."""
     n = cfg["n"]
     counts = [int(round(f * n)) for f in cfg["fractions"]]
@@ -52,27 +52,19 @@ def _fill(cfg, rng):
     R, H = cfg["D"] / 2, cfg["fill_height"]
     cell = max(cfg["diameters"])
     grid, placed = {}, []
-    for d in _sizes(cfg, rng):
+    near = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
+
+    def overlaps(p, r, key):
+        return any((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2 < (r + rq) ** 2
+                   for dx, dy, dz in near for q, rq in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), ()))
+
+    for d in _sizes(cfg):
         r = d / 2
         for _ in range(100000):
             rho, phi = (R - r) * math.sqrt(rng.random()), 2 * math.pi * rng.random()
             p = (rho * math.cos(phi), rho * math.sin(phi), r + (H - 2 * r) * rng.random())
             key = tuple(int(math.floor(c / cell)) for c in p)
-            clear = True
-            for dx in (-1, 0, 1):
-                for dy in (-1, 0, 1):
-                    for dz in (-1, 0, 1):
-                        for q, rq in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), ()):
-                            if (p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2 < (r + rq) ** 2:
-                                clear = False
-                                break
-                        if not clear:
-                            break
-                    if not clear:
-                        break
-                if not clear:
-                    break
-            if clear:
+            if not overlaps(p, r, key):
                 grid.setdefault(key, []).append((p, r))
                 placed.append((p, r))
                 break
@@ -203,7 +195,7 @@ def shear_speed(cfg, sigma):
     return cfg["inertial"] * 10 * math.sqrt(sigma / cfg["rho"])
 
 
-def shear(info, outdir, v=None, log=print):
+def shear(info, outdir, v=None):
     """Moves the upper ring and the lid at v along x over cfg['shear']; writes shear.csv; returns the rows."""
     from yade import O
     from . import bonds
@@ -278,6 +270,7 @@ def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, v=None
     """One direct shear test: build and settle (or load `state`, saved by prepare), wet to water content w,
     consolidate under sigma [Pa], shear. Writes shear.csv and summary.json to outdir; returns the summary."""
     from yade import O
+    from . import bonds
     t0 = time.time()
     if state:
         info = load(state, protocol, dry_fraction)
@@ -286,9 +279,9 @@ def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, v=None
         settle(info, log)
     iter0 = O.iter
     wet(info, w)
-    z0 = _zbond()
+    z0 = bonds.coordination()
     phi0 = consolidate(info, sigma, log)
-    rows = shear(info, outdir, v, log)
+    rows = shear(info, outdir, v)
     tau, se = residual(rows, info["cfg"]["residual_from"])
     summary = dict(config=config, w=w, sigma_Pa=sigma, protocol=protocol, dry_fraction=dry_fraction, tau_residual_Pa=tau, tau_se_Pa=se,
                    phi_consolidated=phi0, phi_end=rows[-1]["phi"], bond_coordination_wet=z0, bond_coordination_end=rows[-1]["bond_coordination"],
@@ -298,11 +291,6 @@ def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, v=None
         json.dump(summary, f, indent=1)
     log("w %g, sigma %g Pa: tau %.2f +- %.2f Pa, z %.2f, %.0f s" % (w, sigma, tau, se, z0, summary["wall_s"]))
     return summary
-
-
-def _zbond():
-    from . import bonds
-    return bonds.coordination()
 
 
 def mohr_coulomb(sigmas, taus, errors):
