@@ -8,6 +8,17 @@ from yade.utils import sphere
 from yade_capillary.scene import engines
 
 
+def through_contact(max_steps):
+    """Steps until a contact has formed and ended (at most max_steps); returns whether one formed."""
+    touched = False
+    for _ in range(max_steps):
+        O.step()
+        touched = touched or O.interactions.countReal() > 0
+        if touched and O.interactions.countReal() == 0:
+            break
+    return touched
+
+
 def head_on(material, R, v0=0.05, fixed_partner=False, max_steps=20000):
     """Two spheres of radius R [m] and material id `material`, in the current scene (O.dt set), 1 um
     apart, meet head on at v0 [m/s] each (or the second against the first held fixed) until they part.
@@ -18,12 +29,7 @@ def head_on(material, R, v0=0.05, fixed_partner=False, max_steps=20000):
     if not fixed_partner:
         O.bodies[a].state.vel = (v0, 0, 0)
     O.engines = engines()
-    touched = False
-    for _ in range(max_steps):
-        O.step()
-        touched = touched or O.interactions.countReal() > 0
-        if touched and O.interactions.countReal() == 0:
-            break
+    touched = through_contact(max_steps)
     before = v0 if fixed_partner else 2 * v0
     return touched, (O.bodies[b].state.vel[0] - O.bodies[a].state.vel[0]) / before
 

@@ -20,6 +20,7 @@ from yade.utils import sphere, wall
 from yade.wrapper import InteractionLoop, PendularMat, Sphere
 
 from yade_capillary import scene as _scene
+from collisions import damping_ratio
 
 LIQUID_RTOL = 1e-12  # liquid balance, relative to the liquid formed so far (the largest of the totals)
 
@@ -33,18 +34,6 @@ def material(model, Vb, gamma=0.0206, theta=0.0, tc=1e-4, en=0.5, et=0.5, densit
     if model == "linear_irreversible":
         m.calibrateFrom = calibrate_from  # linearFmax = linearKc = 0: calibrated per bridge (Roy section 4.2)
     return m
-
-
-def damping_ratio_x(en):
-    """x = beta/omega of the law for a normal restitution en: en = exp(-x (pi - 2 atan x)) (Schwager2007)."""
-    lo, hi = 0.0, 1e3
-    for _ in range(200):
-        mid = (lo + hi) / 2
-        if math.exp(-mid * (math.pi - 2 * math.atan(mid))) > en:
-            lo = mid
-        else:
-            hi = mid
-    return (lo + hi) / 2
 
 
 def oscillator_limit(k, c, m):
@@ -63,7 +52,7 @@ def contact_dt_limit(tc, en):
     and the damping ratio is zeta = cn / (2 sqrt(kn m)) = x / sqrt(1 + x^2). Undamped: dt < 2/omega0;
     damped: dt < (2/omega0)(sqrt(1 + zeta^2) - zeta). The tangential spring (ks = 2/7 kn with the
     rotation of spheres, I = 2/5 m R^2) has the same frequency. Returns the damped limit."""
-    x, omega = damping_ratio_x(en), math.pi / tc
+    x, omega = damping_ratio(en), math.pi / tc
     return oscillator_limit(omega * omega * (1 + x * x), 2 * omega * x, 1.0)  # per unit mass
 
 

@@ -28,6 +28,7 @@ import tempfile
 from yade import O
 
 import stress
+from collisions import damping_ratio
 
 STEPS = 500
 SPEED, RMIN = 0.1, 0.5e-3  # initial speed [m/s], smallest radius [m] (box_packing's default)
@@ -85,7 +86,7 @@ if "j1" in runs and "j2" in runs:
     print("-j1 vs -j2 after %d steps: max |dpos| = %.3g m = %.3g of the box side, max |dvel| = %.3g m/s, max |dangVel| = %.3g rad/s"
           % (STEPS, dpos, dpos / L, dvel, dang))
     ck.true(dpos <= 1e-9 * L, "positions agree to 1e-9 of the box side: max |dpos| = %.3g m, L = %.3g m" % (dpos, L))
-    omega0 = 3.14159 / TC * (1 + stress.damping_ratio_x(EN) ** 2) ** 0.5
+    omega0 = 3.14159 / TC * (1 + damping_ratio(EN) ** 2) ** 0.5
     ck.true(dvel <= omega0 * 1e-9 * L, "velocities agree to omega0 1e-9 L = %.3g m/s: max |dvel| = %.3g m/s" % (omega0 * 1e-9 * L, dvel))
     ck.true(dang <= omega0 * 1e-9 * L / RMIN, "angular velocities agree to omega0 1e-9 L / R_min: max %.3g rad/s" % dang)
     same_contacts = {k for k in a if k.startswith("active")} == {k for k in b if k.startswith("active")}

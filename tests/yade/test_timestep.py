@@ -9,7 +9,7 @@ from yade.utils import sphere, wall
 from yade.wrapper import PendularMat
 
 from yade_capillary.scene import engines, stable_dt
-from stress import damping_ratio_x as damping_ratio
+from collisions import damping_ratio, through_contact
 from stress import oscillator_limit as limit
 from testing import Checker
 
@@ -67,12 +67,7 @@ def collide(dt, en=0.83, steps_max=100000):
     scene(PendularMat(tc=tc, en=en, et=0.9, density=rho, frictionAngle=0.0), "free sphere", dt=dt)
     O.bodies[0].state.vel = (0.05, 0, 0)
     O.bodies[1].state.vel = (-0.05, 0, 0)
-    touched = False
-    for _ in range(steps_max):
-        O.step()
-        touched = touched or O.interactions.countReal() > 0
-        if touched and O.interactions.countReal() == 0:
-            break
+    through_contact(steps_max)
     check = [e for e in O.engines if e.__class__.__name__ == "PendularCheck"][0]
     return (O.bodies[1].state.vel[0] - O.bodies[0].state.vel[0]) / 0.1, check
 

@@ -13,7 +13,8 @@ from yade.wrapper import PendularCheck, PendularMat
 
 from yade_capillary import kernels
 from yade_capillary.scene import LOOPS, engines, stable_dt
-from stress import damping_ratio_x, oscillator_limit
+from collisions import damping_ratio
+from stress import oscillator_limit
 from testing import Checker
 
 ck = Checker("test_viscous_film_dt")
@@ -38,7 +39,7 @@ def expected_limit(R1, R2, volume, tc=TC, eta=ETA):
     (tangential, mass 2/7 m), the viscous coefficients at contact (S = 0, evaluated at S_min) from the
     kernels; eta = 0: the contact's dashpots alone."""
     m = mass(R1) * mass(R2) / (mass(R1) + mass(R2))
-    w, x, xt = math.pi / tc, damping_ratio_x(EN), -math.log(ET) / math.pi
+    w, x, xt = math.pi / tc, damping_ratio(EN), -math.log(ET) / math.pi
     kn, cn = m * w * w * (1 + x * x), 2 * m * w * x
     ks, cs = 2 / 7 * m * w * w * (1 + xt * xt), 2 / 7 * 2 * m * w * xt
     if eta > 0:
