@@ -99,11 +99,12 @@ template <class Table> std::string join_names(const Table& table)
 }
 
 // The radii of a pair (R2 may be a wall), checked against Plausible: the one check of every kernel.
+// The message is built only when a check fails: a bridge's formation calls this several times.
 inline void check_radii(double R1, double R2)
 {
-	const std::string radii = "[" + format_value(Plausible::radius_min) + ", " + format_value(Plausible::radius_max) + "]";
-	if (!(R1 >= Plausible::radius_min && R1 <= Plausible::radius_max)) out_of_range("R1", R1, radii, "m");
-	if (!((R2 >= Plausible::radius_min && R2 <= Plausible::radius_max) || is_wall(R2))) out_of_range("R2", R2, radii + " or inf (a wall)", "m");
+	const auto radii = [] { return "[" + format_value(Plausible::radius_min) + ", " + format_value(Plausible::radius_max) + "]"; };
+	if (!(R1 >= Plausible::radius_min && R1 <= Plausible::radius_max)) out_of_range("R1", R1, radii(), "m");
+	if (!((R2 >= Plausible::radius_min && R2 <= Plausible::radius_max) || is_wall(R2))) out_of_range("R2", R2, radii() + " or inf (a wall)", "m");
 }
 
 } // namespace capillary

@@ -233,11 +233,10 @@ LinearIrreversible LinearIrreversible::make(const BridgeSpec& s, const Pair& p, 
 		for (int i = 1; i <= 256; ++i) fmax = std::max(fmax, bridge_force(rb, rb.rupture * i / 256.0));
 		kc = fmax * fmax / (2 * adhesive_energy(rb));
 	}
-	const std::string given = "linear_fmax = " + format_value(fmax) + " N and linear_kc = " + format_value(kc) + " N/m";
 	if (!(fmax <= Plausible::force_max)) out_of_range("linear_fmax", fmax, "(0, " + format_value(Plausible::force_max) + "]", "N");
 	rupture = fmax / kc; // Roy eq. (17): the model defines its own interaction range
 	if (!(rupture > 0 && rupture <= Plausible::range_max * p.R))
-		throw std::invalid_argument(given + " give the range fmax/kc = " + format_value(rupture) + " m, outside the allowed range (0, "
+		throw std::invalid_argument("linear_fmax = " + format_value(fmax) + " N and linear_kc = " + format_value(kc) + " N/m give the range fmax/kc = " + format_value(rupture) + " m, outside the allowed range (0, "
 		                            + format_value(Plausible::range_max * p.R) + "] m (" + format_value(Plausible::range_max)
 		                            + " effective radii)");
 	return { fmax, kc };

@@ -12,6 +12,7 @@
 #include <pkg/common/InsertionSortCollider.hpp>
 
 #include <array>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -204,26 +205,67 @@ void PendularBonds::share(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, 
 				liquid += p->Vb;
 				held.push_back(p);
 			}
-	// The candidates: every pair of two bonds-mode bodies that the collider lists, not kept dry.
+	// The candidates: every pair of two bonds-mode bodies that the collider lists, not kept dry. A sharing
+	// looks at every listed pair once; what it needs of a body (bonds mode, material, radius) is read once.
+	struct Member {
+		bool bonds    = false;
+		int  material = -1;
+		Real radius   = 0; // radiusOf: inf for a wall or facet
+	};
+	std::vector<Member> members(current->bodies->size());
+	for (const auto& b : *current->bodies)
+		if (b && !b->isClump() && bondsBody(*b))
+			members[b->id] = { true, b->material->id, radiusOf(b) };
+	// What a potential pair of two spheres needs for its threshold comes from its two materials alone
+	// (Ip2_PendularMat_PendularMat_PendularPhys::setLiquid: wet, theta of each, the rupture rule): it is
+	// taken from the physics of the first pair of those materials made real here, and the other pairs of
+	// them are made real only if they get a bond.
+	struct PairParams {
+		bool usable = false;
+		Real theta1 = 0, theta2 = 0;
+		int  rupture = 0;
+	};
+	std::map<std::pair<int, int>, PairParams> byMaterials;
 	struct Candidate {
 		shared_ptr<Interaction> I;
-		PendularPhys*           phys;
+		PendularPhys*           phys; // nullptr: a potential pair, made real if it gets a bond
 		bool                    made; // made real here: reset again if it gets no bond
 	};
 	std::vector<Candidate> candidates;
 	std::vector<double>    thresholds, cubes;
 	for (const auto& I : *current->interactions) {
-		const auto& b1 = Body::byId(I->getId1(), current);
-		const auto& b2 = Body::byId(I->getId2(), current);
-		if (!b1 || !b2 || b1->isClump() || b2->isClump() || !bondsBody(*b1) || !bondsBody(*b2) || keepsDry(I->getId1(), I->getId2())) continue;
+		const Body::id_t id1 = I->getId1(), id2 = I->getId2();
+		if (id1 >= Body::id_t(members.size()) || id2 >= Body::id_t(members.size())) continue;
+		const Member &m1 = members[id1], &m2 = members[id2];
+		if (!m1.bonds || !m2.bonds || keepsDry(id1, id2)) continue;
+		const bool spheres = math::isfinite(m1.radius) && math::isfinite(m2.radius);
+		const auto key     = std::make_pair(m1.material, m2.material);
+		if (!I->isReal() && spheres) {
+			const auto known = byMaterials.find(key);
+			if (known != byMaterials.end()) {
+				const PairParams& pp = known->second;
+				if (!pp.usable) continue;
+				// Ig2_Sphere_Sphere_ScGeom's distance, the gap being minus its penetrationDepth.
+				const Vector3r shift2 = current->isPeriodic ? Vector3r(current->cell->hSize * I->cellDist.cast<Real>()) : Vector3r::Zero();
+				const Real     gap    = (Body::byId(id2, current)->state->pos + shift2 - Body::byId(id1, current)->state->pos).norm() - m1.radius - m2.radius;
+				const double   t = capillary::bonds::threshold(capillary::Rupture(pp.rupture), m1.radius, m2.radius, gap, pp.theta1, pp.theta2);
+				if (!math::isfinite(t)) continue;
+				candidates.push_back({ I, nullptr, true });
+				thresholds.push_back(t);
+				cubes.push_back(capillary::bonds::cube(m1.radius, m2.radius));
+				continue;
+			}
+		}
 		const bool made = !I->isReal();
 		if (made && !makeReal(current, loop, I)) {
 			I->reset();
 			continue;
 		}
-		auto*       p = bondOf(*I);
-		const auto* g = dynamic_cast<const ScGeom*>(I->geom.get());
-		if (!p || !g || !p->wet || !(p->kn > 0)) {
+		auto*       p      = bondOf(*I);
+		const auto* g      = dynamic_cast<const ScGeom*>(I->geom.get());
+		const bool  usable = p && g && p->wet && p->kn > 0;
+		if (made && spheres) byMaterials[key] = { usable, usable ? p->theta1 : 0, usable ? p->theta2 : 0, usable ? p->ruptureIndex : 0 };
+		if (!usable) {
 			if (made) I->reset();
 			continue;
 		}
@@ -252,6 +294,15 @@ void PendularBonds::share(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, 
 		}
 	}
 	if (sharing.bonded.size() != candidates.size()) sharing.bonded.assign(candidates.size(), 0); // no liquid: no bond
+	for (size_t i = 0; i < candidates.size(); ++i) {
+		Candidate& c = candidates[i];
+		if (!sharing.bonded[i] || c.phys) continue;
+		if (!makeReal(current, loop, c.I) || !(c.phys = bondOf(*c.I))) {
+			resetMade();
+			throw std::logic_error("PendularBonds: the pair " + std::to_string(c.I->getId1()) + "-" + std::to_string(c.I->getId2())
+			                       + " got no bond physics, unlike the first pair of its materials");
+		}
+	}
 	// Every bond within its model's volumes, and within what the collider lists, before anything changes.
 	Real longest = 0;
 	for (size_t i = 0; i < candidates.size(); ++i) {

@@ -2,7 +2,7 @@
 # fixed spheres against the printed rule (Richefeu2008):
 #   1. the sharing: V_b = alpha R^3, R = sqrt(R1 R2) (eq. 14), sum V_b = the liquid (eq. 13), every pair within
 #      the debonding distance (1 + theta/2) V_b^(1/3) of its own bond (eq. 6, rule iii) and no other; bonds at a
-#      distance pull with the model's force;
+#      distance pull with the model's force; over a random packing of two materials, the kernel's sharing;
 #   2. protocol 2 (section 3.2): a broken bond's liquid to its two particles in proportion to their diameters,
 #      all of it taken by the next contact;
 #   3. protocol 3 (section 4.2): a particle's share to its lowest bond in its lower hemisphere;
@@ -168,6 +168,55 @@ for loop in ("fused", "standard"):
     while collider.numAction == runs and O.iter < 3000:
         O.step()
     ck.true(e.lastSharing == O.iter - 1, "%s: protocol 1: a sharing in the step of the collider's run (at %d, step %d)" % (loop, e.lastSharing, O.iter - 1))
+
+# 1b. The sharing over a random loose packing of two materials (theta 0 and 0.4 rad; radii 0.5 to 1 mm): the
+# engine's bonds and alpha are the kernel's sharing (share_liquid) over every pair within the collider's reach,
+# the gaps computed here from the positions, whether the engine met a pair as a contact or as a potential pair.
+def packing(loop):
+    import random
+    rng = random.Random(5)
+    O.reset()
+    mats = [material(), material(theta=0.4)]
+    placed = []
+    while len(placed) < 150:
+        r = (0.5 + 0.5 * rng.random()) * 1e-3
+        c = tuple(12e-3 * rng.random() for _ in range(3))
+        if placed and len(placed) % 4 == 0:  # every fourth sphere in contact with the one before, 0.01 mm deep
+            q, rq, _ = placed[-1]
+            u = [rng.gauss(0, 1) for _ in range(3)]
+            n = math.sqrt(sum(x * x for x in u))
+            c = tuple(qk + (r + rq - 0.01e-3) * uk / n for qk, uk in zip(q, u))
+        if all(math.dist(c, q) > r + rq - 0.02e-3 for q, rq, _ in placed):
+            placed.append((c, r, rng.randrange(2)))
+    ids = [O.bodies.append(sphere(c, r, material=mats[m], fixed=True)) for c, r, m in placed]
+    e = PendularBonds()
+    O.engines = engines(loop=loop, extra=[e])
+    [x for x in O.engines if x.label == "collider"][0].verletDist = 0.6e-3
+    O.dt = 1e-6
+    O.bodies[ids[0]].state.film = 1e-10
+    O.step()
+    pairs, thresholds, cubes_, touching = [], [], [], set()
+    for i, (ci, ri, mi) in enumerate(placed):
+        for j in range(i + 1, len(placed)):
+            cj, rj, mj = placed[j]
+            gap = math.dist(ci, cj) - ri - rj
+            if gap < 0.5e-3:
+                pairs.append((ids[i], ids[j]))
+                if gap < 0:
+                    touching.add((ids[i], ids[j]))
+                thresholds.append(kernels.bond_threshold("lian", ri, rj, gap, 0.4 * mi, 0.4 * mj))
+                cubes_.append(kernels.bond_cube(ri, rj))
+    alpha, bonded = kernels.share_liquid(thresholds, cubes_, 1e-10)
+    want = {p for p, b in zip(pairs, bonded) if b}
+    got = {(I.id1, I.id2) for I in O.interactions if I.isReal and I.phys.active}
+    contacts = len(want & touching)
+    ck.true(got == want and len(want) > 50 and 0 < contacts < len(want),
+            "%s: random packing: the engine's %d bonds are the kernel's %d (%d in contact)" % (loop, len(got), len(want), contacts))
+    ck.close(e.alpha, alpha, 1e-12, "%s: random packing: alpha" % loop, "share_liquid over the pairs within reach (Richefeu2008 eq. 13-14, rule iii)")
+
+
+for loop in ("fused", "standard"):
+    packing(loop)
 
 # 6. The pairs kept dry: a fraction of the candidates, the same for a seed. A cubic lattice of 6^3 spheres of
 # 1 mm, 0.05 mm apart: 540 neighbour pairs.
