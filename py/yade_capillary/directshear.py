@@ -27,8 +27,8 @@ import time
 # 2/7 kn (the viscous friction of eq. 12 would need a step 50 times smaller to reach its Coulomb cap at the shear
 # speed), walls as frictional as the beads; the shear speed from the inertial number (docs/richefeu.md).
 PAPER = dict(D=0.046, h_lower=0.015, h_upper=0.010, n=7307, diameters=(2e-3, 1.5e-3, 1e-3), fractions=(0.5, 0.3, 0.2), rho=2500.0,
-             kn=2000.0, damping=0.3, mu=0.4, gamma=0.073, theta=0.0, phi=0.6, inertial=2e-3, shear=4e-3, residual_from=2e-3,
-             fill_height=0.042, settle_s=0.35, consolidate_s=0.15, dt_safety=0.2, records=200, seed=1)
+             kn=2000.0, damping=0.3, mu=0.4, gamma=0.073, theta=0.0, phi=0.6, inertial=4e-3, shear=4e-3, residual_from=2e-3,
+             fill_height=0.042, settle_s=0.35, consolidate_s=0.15, rest_tolerance=0.02, dt_safety=0.2, records=200, seed=1)
 # Same particles in a cell of 16 mm (about 890 spheres), sheared faster and less far: a regression check of the
 # CI, not a reproduction.
 CI = dict(PAPER, D=0.016, n=884, inertial=1e-2, shear=2e-3, residual_from=1e-3, records=100)
@@ -178,15 +178,46 @@ def consolidate(info, sigma, log=print):
         if m.label in ("beads", "walls"):
             m.frictionAngle = math.atan(cfg["mu"])
     n = _ip2().updateContacts()
-    # At rest with friction: the lid's contact stress, sampled every chunk, averages to its weight.
-    samples = []
-    for _ in range(max(1, int(cfg["consolidate_s"] / 3 / (chunk * O.dt)))):
+    # At rest with friction: the lid's contact stress, sampled every chunk, averages to its weight. A heavy lid
+    # rings longer on the sample: the rest lasts at least consolidate_s / 3 and goes on (up to consolidate_s)
+    # until the mean of the last half of the samples is within rest_tolerance of sigma.
+    samples, least, most = [], max(2, int(cfg["consolidate_s"] / 3 / (chunk * O.dt))), max(2, int(cfg["consolidate_s"] / (chunk * O.dt)))
+    while len(samples) < most:
         O.run(chunk, True)
         samples.append(O.forces.f(lid)[2] / A)
-    info["sigma_rest_Pa"] = sum(samples[len(samples) // 2:]) / len(samples[len(samples) // 2:])
-    log("consolidated at %g Pa: phi %.4f without friction, %.4f with mu = %g (%d contacts updated), lid stress at rest %.1f Pa"
-        % (sigma, phi0, solid_fraction(info), cfg["mu"], n, info["sigma_rest_Pa"]))
+        last = samples[len(samples) // 2:]
+        if len(samples) >= least and abs(sum(last) / len(last) - sigma) < cfg["rest_tolerance"] * sigma:
+            break
+    info["sigma_rest_Pa"], info["rest_s"] = sum(last) / len(last), len(samples) * chunk * O.dt
+    log("consolidated at %g Pa: phi %.4f without friction, %.4f with mu = %g (%d contacts updated), lid stress %.1f Pa after %.3f s at rest"
+        % (sigma, phi0, solid_fraction(info), cfg["mu"], n, info["sigma_rest_Pa"], info["rest_s"]))
     return phi0
+
+
+def plane_stresses(info):
+    """Stresses on the shear plane z = h_lower [Pa], compression positive.
+
+    weight_above: the weight of the spheres whose centre lies above the plane over the cell's area, the rho g h
+    of the paper's normal stress sigma = N/S + rho g h (Richefeu2008 section 3.1.1).
+    tau_contacts, sigma_contacts: the force that the spheres below the plane exert on those above it through
+    their contacts and bridges (capillary attraction included), against the shear direction and upwards, over
+    the area. Against the ring's force they tell what the cell's walls carry."""
+    from yade import O
+    cfg = info["cfg"]
+    A = math.pi * cfg["D"] ** 2 / 4
+    z0 = cfg["h_lower"]
+    above = {i: O.bodies[i].state.pos[2] > z0 for i in info["spheres"]}
+    weight = sum(O.bodies[i].state.mass for i, up in above.items() if up) * GRAVITY
+    fx = fz = 0.0
+    for I in O.interactions:
+        a, b = above.get(I.id1), above.get(I.id2)
+        if a is None or b is None or a == b or not I.isReal:
+            continue
+        f2 = I.phys.normalForce + I.phys.shearForce + I.phys.viscousShear  # on body 2 (YADE convention)
+        sign = 1.0 if b else -1.0  # the force on the sphere above
+        fx += sign * f2[0]
+        fz += sign * f2[2]
+    return dict(weight_above_Pa=weight / A, tau_contacts_Pa=-fx / A, sigma_contacts_Pa=fz / A)
 
 
 def shear_speed(cfg, sigma):
@@ -216,7 +247,7 @@ def shear(info, outdir, v=None):
         O.run(every, True)
         fx = sum(O.forces.f(i)[0] for i in upper)
         rows.append(dict(displacement_m=O.bodies[info["upper"][0]].state.pos[0] - x0, tau_Pa=-fx / A,
-                         sigma_lid_Pa=O.forces.f(info["lid"])[2] / A, lid_z_m=O.bodies[info["lid"]].state.pos[2],
+                         sigma_lid_Pa=O.forces.f(info["lid"])[2] / A, lid_z_m=O.bodies[info["lid"]].state.pos[2], **plane_stresses(info),
                          phi=solid_fraction(info), bond_coordination=bonds.coordination(), liquid_m3=law.liquidTotals()["total"]))
     info["wall_s"] = time.time() - t0
     info["steps"] = steps
@@ -228,9 +259,10 @@ def shear(info, outdir, v=None):
     return rows
 
 
-def residual(rows, start):
-    """Mean residual shear stress [Pa] from displacement `start` on, and its standard error from 5 block means."""
-    taus = [r["tau_Pa"] for r in rows if r["displacement_m"] >= start]
+def residual(rows, start, key="tau_Pa"):
+    """Mean residual value of rows[key] (the shear stress [Pa] by default) from displacement `start` on, and its
+    standard error from 5 block means."""
+    taus = [r[key] for r in rows if r["displacement_m"] >= start]
     k = 5
     blocks = [taus[i * len(taus) // k:(i + 1) * len(taus) // k] for i in range(k)]
     means = [sum(b) / len(b) for b in blocks if b]
@@ -266,9 +298,10 @@ def load(path, protocol="particles", dry_fraction=0.0):
     return info
 
 
-def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, v=None, seed=None, loop="fused", state=None, log=print):
+def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, speed=1.0, seed=None, loop="fused", state=None, log=print):
     """One direct shear test: build and settle (or load `state`, saved by prepare), wet to water content w,
-    consolidate under sigma [Pa], shear. Writes shear.csv and summary.json to outdir; returns the summary."""
+    consolidate under sigma [Pa], shear at `speed` times the speed of the configuration's inertial number.
+    Writes shear.csv and summary.json to outdir; returns the summary."""
     from yade import O
     from . import bonds
     t0 = time.time()
@@ -281,15 +314,21 @@ def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, v=None
     wet(info, w)
     z0 = bonds.coordination()
     phi0 = consolidate(info, sigma, log)
-    rows = shear(info, outdir, v)
-    tau, se = residual(rows, info["cfg"]["residual_from"])
-    summary = dict(config=config, w=w, sigma_Pa=sigma, protocol=protocol, dry_fraction=dry_fraction, tau_residual_Pa=tau, tau_se_Pa=se,
+    rows = shear(info, outdir, speed * shear_speed(info["cfg"], sigma))
+    start = info["cfg"]["residual_from"]
+    tau, se = residual(rows, start)
+    above = residual(rows, start, "weight_above_Pa")[0]
+    tau_c, se_c = residual(rows, start, "tau_contacts_Pa")
+    summary = dict(config=config, w=w, sigma_Pa=sigma, sigma_plane_Pa=sigma + above, weight_above_Pa=above, protocol=protocol,
+                   dry_fraction=dry_fraction, tau_residual_Pa=tau, tau_se_Pa=se, tau_contacts_Pa=tau_c, tau_contacts_se_Pa=se_c,
+                   sigma_contacts_Pa=residual(rows, start, "sigma_contacts_Pa")[0], sigma_rest_Pa=info["sigma_rest_Pa"], rest_s=info["rest_s"],
                    phi_consolidated=phi0, phi_end=rows[-1]["phi"], bond_coordination_wet=z0, bond_coordination_end=rows[-1]["bond_coordination"],
                    shear_speed_m_s=info["v"], inertial_number=info["v"] / 10 * math.sqrt(info["cfg"]["rho"] / sigma),
                    dt_s=O.dt, spheres=len(info["spheres"]), particle_steps=len(info["spheres"]) * (O.iter - iter0), wall_s=time.time() - t0)
     with open(os.path.join(outdir, "summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
-    log("w %g, sigma %g Pa: tau %.2f +- %.2f Pa, z %.2f, %.0f s" % (w, sigma, tau, se, z0, summary["wall_s"]))
+    log("w %g, sigma %g Pa (on the plane %.1f Pa): tau %.2f +- %.2f Pa (contacts across the plane %.2f Pa), z %.2f, %.0f s"
+        % (w, sigma, sigma + above, tau, se, tau_c, z0, summary["wall_s"]))
     return summary
 
 
