@@ -100,10 +100,15 @@ def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="
     O.reset()
     beads, walls = _materials(cfg)
     R = cfg["D"] / 2
-    lower = O.bodies.append(geom.facetCylinder((0, 0, cfg["h_lower"] / 2), R, cfg["h_lower"], segmentsNumber=48, wallMask=4, material=walls))
+    # Each part's wall ends at the shear plane in a rim (an annulus of the shear distance and a largest diameter):
+    # where the parts no longer overlap, the spheres of one part rest on the other part's rim instead of leaving
+    # the cell through the opening between the two walls.
+    rim = dict(radius=R + cfg["shear"] + max(cfg["diameters"]), height=0, radiusTopInner=R, segmentsNumber=48, material=walls)
+    lower = O.bodies.append(geom.facetCylinder((0, 0, cfg["h_lower"] / 2), R, cfg["h_lower"], segmentsNumber=48, wallMask=4, material=walls)
+                            + geom.facetCylinder((0, 0, cfg["h_lower"]), **rim))
     top = cfg["h_lower"] + 2 * cfg["fill_height"]  # the ring reaches above the loose fill; only its lowest h_upper meets the sample
     upper = O.bodies.append(geom.facetCylinder((0, 0, (cfg["h_lower"] + top) / 2), R, top - cfg["h_lower"], segmentsNumber=48, wallMask=4,
-                                               material=walls))
+                                               material=walls) + geom.facetCylinder((0, 0, cfg["h_lower"]), **rim))
     bottom = O.bodies.append(wall(0, axis=2, sense=1, material=walls))
     spheres = [O.bodies.append(sphere(p, r, material=beads)) for p, r in _fill(cfg, rng)]
     bonds = PendularBonds(protocol=protocol, dryFraction=dry_fraction, seed=cfg["seed"], label="bonds")
