@@ -1,8 +1,10 @@
 """Plots of a direct shear series written by scripts/direct_shear.py (Richefeu2008 Fig. 5 and 6):
   python3 scripts/studies/direct_shear_plots.py OUTDIR [--sigma 300]
 writes OUTDIR/shear_curves.png (shear stress against displacement over the mean diameter, each water content at
-one normal stress) and OUTDIR/cohesion.png (the yield loci of each water content, and c against w with its standard
-error). Reads OUTDIR/runs.csv, OUTDIR/mohr_coulomb.csv and OUTDIR/w<w>_sigma<sigma>/shear.csv."""
+one normal stress), OUTDIR/cohesion.png (the yield loci of each water content, and c against w with its standard
+error) and OUTDIR/stress_drops.csv (per test, the falls of the shear stress between two records by more than DROP of
+its residual mean, within the residual window: the instabilities of Richefeu2008 Fig. 5). Reads OUTDIR/runs.csv,
+OUTDIR/mohr_coulomb.csv and OUTDIR/w<w>_sigma<sigma>/shear.csv."""
 import csv
 import math
 import os
@@ -14,6 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 MEAN_DIAMETER = 1.65e-3  # 50/30/20 % by number of 2, 1.5 and 1 mm (yade_capillary.directshear.PAPER)
+RESIDUAL_FROM = 2e-3  # m, yade_capillary.directshear.PAPER["residual_from"]
+DROP = 0.05
 
 
 def _rows(path):
@@ -40,6 +44,15 @@ def main(argv):
     ax.legend()
     fig.tight_layout()
     fig.savefig(os.path.join(outdir, "shear_curves.png"), dpi=120)
+
+    with open(os.path.join(outdir, "stress_drops.csv"), "w", newline="") as f:
+        out = csv.writer(f)
+        out.writerow(["w", "sigma_Pa", "drops", "records"])
+        for r in runs:
+            rows = _rows(os.path.join(outdir, "w%g_sigma%g" % (float(r["w"]), float(r["sigma_Pa"])), "shear.csv"))
+            taus = [float(x["tau_Pa"]) for x in rows if float(x["displacement_m"]) >= RESIDUAL_FROM]
+            falls = sum(1 for a, b in zip(taus, taus[1:]) if a - b > DROP * float(r["tau_residual_Pa"]))
+            out.writerow([r["w"], r["sigma_Pa"], falls, len(taus)])
 
     fits = _rows(os.path.join(outdir, "mohr_coulomb.csv"))
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
