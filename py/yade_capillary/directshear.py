@@ -19,6 +19,8 @@ import os
 import random
 import time
 
+from . import glassbeads
+
 # Richefeu 2008 section 3.2.1: Ø46 mm, upper part 10 mm, lower 15 mm; 7307 spheres of 2, 1.5 and 1 mm in
 # proportions 50/30/20 % by number (they fill Ø46 x 20 mm at phi = 0.6, the sample of the experiments; by
 # volume the same sample would need about 16 700 spheres). Glass: rho 2500 kg/m^3; water: gamma 0.073 N/m,
@@ -36,59 +38,6 @@ CONFIGS = {"paper": PAPER, "ci": CI}
 GRAVITY = 9.81
 
 
-def _sizes(cfg):
-    """Diameters of the n spheres in the number fractions, largest first."""
-    n = cfg["n"]
-    counts = [int(round(f * n)) for f in cfg["fractions"]]
-    counts[-1] = n - sum(counts[:-1])
-    out = []
-    for d, c in zip(cfg["diameters"], counts):
-        out += [d] * c
-    return out
-
-
-def _fill(cfg, rng):
-    """Random positions without overlap in the cylinder (largest spheres first), up to fill_height."""
-    R, H = cfg["D"] / 2, cfg["fill_height"]
-    cell = max(cfg["diameters"])
-    grid, placed = {}, []
-    near = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
-
-    def overlaps(p, r, key):
-        return any((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2 < (r + rq) ** 2
-                   for dx, dy, dz in near for q, rq in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), ()))
-
-    for d in _sizes(cfg):
-        r = d / 2
-        for _ in range(100000):
-            rho, phi = (R - r) * math.sqrt(rng.random()), 2 * math.pi * rng.random()
-            p = (rho * math.cos(phi), rho * math.sin(phi), r + (H - 2 * r) * rng.random())
-            key = tuple(int(math.floor(c / cell)) for c in p)
-            if not overlaps(p, r, key):
-                grid.setdefault(key, []).append((p, r))
-                placed.append((p, r))
-                break
-        else:
-            raise ValueError("directshear: no room for sphere %d in a fill of %g m; raise fill_height" % (len(placed), H))
-    return placed
-
-
-def _materials(cfg):
-    from yade import O
-    from yade.wrapper import PendularMat
-    d_min = min(cfg["diameters"])
-    m_pair = cfg["rho"] * math.pi / 6 * d_min ** 3 / 2  # the lightest pair's reduced mass
-    cn = cfg["damping"] * 2 * math.sqrt(m_pair * cfg["kn"])
-    # Material values combine in series: twice the pair's.
-    contact = dict(kn=2 * cfg["kn"], cn=2 * cn, ks=2 * cfg["kn"] * 2 / 7, cs=0.0, density=cfg["rho"], frictionAngle=0.0,
-                   normalDamping="approach")
-    beads = PendularMat(Vb=1e-6, gamma=cfg["gamma"], theta=cfg["theta"], model="richefeu", rupture="lian", liquid="bonds",
-                        label="beads", **contact)
-    beads.wet = True
-    walls = PendularMat(label="walls", **contact)
-    return O.materials.append(beads), O.materials.append(walls)
-
-
 def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="fused"):
     """The cell with its loose spheres (no liquid, no friction); returns the info dict of the scene."""
     from yade import O, geom
@@ -98,7 +47,7 @@ def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="
     cfg = dict(CONFIGS[config])
     rng = random.Random(cfg["seed"] if seed is None else seed)
     O.reset()
-    beads, walls = _materials(cfg)
+    beads, walls = glassbeads.materials(cfg)
     R = cfg["D"] / 2
     # Each part's wall ends at the shear plane in a rim (an annulus of the shear distance and a largest diameter):
     # where the parts no longer overlap, the spheres of one part rest on the other part's rim instead of leaving
@@ -110,7 +59,7 @@ def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="
     upper = O.bodies.append(geom.facetCylinder((0, 0, (cfg["h_lower"] + top) / 2), R, top - cfg["h_lower"], segmentsNumber=48, wallMask=4,
                                                material=walls) + geom.facetCylinder((0, 0, cfg["h_lower"]), **rim))
     bottom = O.bodies.append(wall(0, axis=2, sense=1, material=walls))
-    spheres = [O.bodies.append(sphere(p, r, material=beads)) for p, r in _fill(cfg, rng)]
+    spheres = [O.bodies.append(sphere(p, r, material=beads)) for p, r in glassbeads.fill(cfg, rng)]
     bonds = PendularBonds(protocol=protocol, dryFraction=dry_fraction, seed=cfg["seed"], label="bonds")
     O.engines = engines(gravity=(0, 0, -GRAVITY), loop=loop, extra=[bonds])
     # The collider lists every pair within a quarter of the largest diameter: longer than the debonding

@@ -1,0 +1,65 @@
+"""The glass beads of Richefeu et al. 2008's scenarios (yade_capillary.directshear, yade_capillary.compression):
+the sizes of a number distribution, a random loose fill of a cylinder, and the materials of the beads (the liquid
+shared over bonds, the richefeu force with the lian rupture distance, approach-only damping) and of the dry walls.
+
+A configuration is a dict with n, diameters, fractions (by number), D and fill_height [m], rho [kg/m^3], kn [N/m per
+contact], damping (of critical, for the lightest pair), gamma [N/m], theta [rad], and optionally mass_scale (the
+densities times mass_scale, for a larger time step in a quasi-static test; 1 if absent) and extrapolate.
+"""
+import math
+
+
+def sizes(cfg):
+    """Diameters [m] of the n spheres in the number fractions, largest first."""
+    n = cfg["n"]
+    counts = [int(round(f * n)) for f in cfg["fractions"]]
+    counts[-1] = n - sum(counts[:-1])
+    out = []
+    for d, c in sorted(zip(cfg["diameters"], counts), reverse=True):
+        out += [d] * c
+    return out
+
+
+def fill(cfg, rng):
+    """Random positions without overlap in the cylinder of diameter D (largest spheres first), up to fill_height:
+    a list of (centre, radius) [m]."""
+    R, H = cfg["D"] / 2, cfg["fill_height"]
+    cell = max(cfg["diameters"])
+    grid, placed = {}, []
+    near = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
+
+    def overlaps(p, r, key):
+        return any((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2 < (r + rq) ** 2
+                   for dx, dy, dz in near for q, rq in grid.get((key[0] + dx, key[1] + dy, key[2] + dz), ()))
+
+    for d in sizes(cfg):
+        r = d / 2
+        for _ in range(100000):
+            rho, phi = (R - r) * math.sqrt(rng.random()), 2 * math.pi * rng.random()
+            p = (rho * math.cos(phi), rho * math.sin(phi), r + (H - 2 * r) * rng.random())
+            key = tuple(int(math.floor(c / cell)) for c in p)
+            if not overlaps(p, r, key):
+                grid.setdefault(key, []).append((p, r))
+                placed.append((p, r))
+                break
+        else:
+            raise ValueError("glassbeads.fill: no room for sphere %d in a fill of fill_height = %g m; raise fill_height" % (len(placed), H))
+    return placed
+
+
+def materials(cfg):
+    """Appends the beads' and the walls' PendularMat (labels beads and walls, both without friction: the
+    scenarios set it after their preparation); returns their ids."""
+    from yade import O
+    from yade.wrapper import PendularMat
+    rho = cfg["rho"] * cfg.get("mass_scale", 1.0)
+    d_min = min(cfg["diameters"])
+    m_pair = rho * math.pi / 6 * d_min ** 3 / 2  # the lightest pair's reduced mass
+    cn = cfg["damping"] * 2 * math.sqrt(m_pair * cfg["kn"])
+    # Material values combine in series: twice the pair's.
+    contact = dict(kn=2 * cfg["kn"], cn=2 * cn, ks=2 * cfg["kn"] * 2 / 7, cs=0.0, density=rho, frictionAngle=0.0, normalDamping="approach")
+    beads = PendularMat(Vb=1e-6, gamma=cfg["gamma"], theta=cfg["theta"], model="richefeu", rupture="lian", liquid="bonds",
+                        extrapolate=cfg.get("extrapolate", False), label="beads", **contact)
+    beads.wet = True
+    walls = PendularMat(label="walls", **contact)
+    return O.materials.append(beads), O.materials.append(walls)
