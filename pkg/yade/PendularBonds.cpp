@@ -208,14 +208,14 @@ void PendularBonds::share(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, 
 	// The candidates: every pair of two bonds-mode bodies that the collider lists, not kept dry. A sharing
 	// looks at every listed pair once; what it needs of a body (bonds mode, material, radius) is read once.
 	struct Member {
-		bool bonds    = false;
-		int  material = -1;
-		Real radius   = 0; // radiusOf: inf for a wall or facet
+		bool            bonds    = false;
+		const Material* material = nullptr; // by address: a material outside O.materials has id -1
+		Real            radius   = 0;       // radiusOf: inf for a wall or facet
 	};
 	std::vector<Member> members(current->bodies->size());
 	for (const auto& b : *current->bodies)
 		if (b && !b->isClump() && bondsBody(*b))
-			members[b->id] = { true, b->material->id, radiusOf(b) };
+			members[b->id] = { true, b->material.get(), radiusOf(b) };
 	// What a potential pair of two spheres needs for its threshold comes from its two materials alone
 	// (Ip2_PendularMat_PendularMat_PendularPhys::setLiquid: wet, theta of each, the rupture rule): it is
 	// taken from the physics of the first pair of those materials made real here, and the other pairs of
@@ -225,7 +225,7 @@ void PendularBonds::share(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, 
 		Real theta1 = 0, theta2 = 0;
 		int  rupture = 0;
 	};
-	std::map<std::pair<int, int>, PairParams> byMaterials;
+	std::map<std::pair<const Material*, const Material*>, PairParams> byMaterials;
 	struct Candidate {
 		shared_ptr<Interaction> I;
 		PendularPhys*           phys; // nullptr: a potential pair, made real if it gets a bond
