@@ -26,13 +26,14 @@ ck = Checker("test_bonds_liquid")
 GAMMA = 0.073
 
 
-def material(**extra):
+def material(append=True, **extra):
+    """A bonds-mode material: its id in O.materials, or (append=False) the instance, outside O.materials (id -1)."""
     kw = dict(tc=1e-4, en=0.7, et=0.7, density=2500, frictionAngle=0.3, Vb=1e-6, gamma=GAMMA, theta=0.0, model="richefeu",
               rupture="lian", liquid="bonds")
     kw.update(extra)
     m = PendularMat(**kw)
     m.wet = True
-    return O.materials.append(m)
+    return O.materials.append(m) if append else m
 
 
 def scene(loop, spheres, **engine):
@@ -169,14 +170,15 @@ for loop in ("fused", "standard"):
         O.step()
     ck.true(e.lastSharing == O.iter - 1, "%s: protocol 1: a sharing in the step of the collider's run (at %d, step %d)" % (loop, e.lastSharing, O.iter - 1))
 
-# 1b. The sharing over a random loose packing of two materials (theta 0 and 0.4 rad; radii 0.5 to 1 mm): the
+# 1b. The sharing over a random loose packing of two materials (theta 0 and 0.8 rad; radii 0.5 to 1 mm): the
 # engine's bonds and alpha are the kernel's sharing (share_liquid) over every pair within the collider's reach,
-# the gaps computed here from the positions, whether the engine met a pair as a contact or as a potential pair.
-def packing(loop):
+# the gaps computed here from the positions, whether the engine met a pair as a contact or as a potential pair, and
+# whether the materials are in O.materials or not.
+def packing(loop, append):
     import random
     rng = random.Random(5)
     O.reset()
-    mats = [material(), material(theta=0.4)]
+    mats = [material(append), material(append, theta=0.8)]
     placed = []
     while len(placed) < 150:
         r = (0.5 + 0.5 * rng.random()) * 1e-3
@@ -193,7 +195,7 @@ def packing(loop):
     O.engines = engines(loop=loop, extra=[e])
     [x for x in O.engines if x.label == "collider"][0].verletDist = 0.6e-3
     O.dt = 1e-6
-    O.bodies[ids[0]].state.film = 1e-10
+    O.bodies[ids[0]].state.film = 1e-9
     O.step()
     pairs, thresholds, cubes_, touching = [], [], [], set()
     for i, (ci, ri, mi) in enumerate(placed):
@@ -204,19 +206,21 @@ def packing(loop):
                 pairs.append((ids[i], ids[j]))
                 if gap < 0:
                     touching.add((ids[i], ids[j]))
-                thresholds.append(kernels.bond_threshold("lian", ri, rj, gap, 0.4 * mi, 0.4 * mj))
+                thresholds.append(kernels.bond_threshold("lian", ri, rj, gap, 0.8 * mi, 0.8 * mj))
                 cubes_.append(kernels.bond_cube(ri, rj))
-    alpha, bonded = kernels.share_liquid(thresholds, cubes_, 1e-10)
+    alpha, bonded = kernels.share_liquid(thresholds, cubes_, 1e-9)
+    tag = "" if append else ", materials outside O.materials"
     want = {p for p, b in zip(pairs, bonded) if b}
     got = {(I.id1, I.id2) for I in O.interactions if I.isReal and I.phys.active}
     contacts = len(want & touching)
     ck.true(got == want and len(want) > 50 and 0 < contacts < len(want),
-            "%s: random packing: the engine's %d bonds are the kernel's %d (%d in contact)" % (loop, len(got), len(want), contacts))
-    ck.close(e.alpha, alpha, 1e-12, "%s: random packing: alpha" % loop, "share_liquid over the pairs within reach (Richefeu2008 eq. 13-14, rule iii)")
+            "%s%s: random packing: the engine's %d bonds are the kernel's %d (%d in contact)" % (loop, tag, len(got), len(want), contacts))
+    ck.close(e.alpha, alpha, 1e-12, "%s%s: random packing: alpha" % (loop, tag), "share_liquid over the pairs within reach (Richefeu2008 eq. 13-14, rule iii)")
 
 
 for loop in ("fused", "standard"):
-    packing(loop)
+    packing(loop, True)
+packing("fused", False)  # two materials outside O.materials: both have id -1
 
 # 6. The pairs kept dry: a fraction of the candidates, the same for a seed. A cubic lattice of 6^3 spheres of
 # 1 mm, 0.05 mm apart: 540 neighbour pairs.
