@@ -177,9 +177,17 @@ void PendularBonds::shareNow(Real added)
 	const auto loopLaw = lawOf(current);
 	if (!loopLaw.second) throw std::invalid_argument("PendularBonds.share(): no interaction loop with Law2_ScGeom_PendularPhys_Bridge in O.engines");
 	PendularLoop::syncScene(current, true); // the loop reads the changed objects at its next step
+	// The candidates are the pairs the collider lists: after O.load (which keeps no potential pair) or a move
+	// of the bodies it has not seen, the collider runs here first, as it would at the start of the next step.
+	for (const auto& e : current->engines)
+		if (auto* collider = dynamic_cast<Collider*>(e.get())) {
+			collider->scene = current;
+			if (collider->isActivated()) collider->action();
+		}
 	refreshFlags(current);
 	flagsStale = false;
 	share(current, *loopLaw.second, added);
+	colliderRuns = PendularLoop::colliderRuns(*current); // this sharing saw the collider's last run
 }
 
 void PendularBonds::share(Scene* current, Law2_ScGeom_PendularPhys_Bridge& law, Real added)

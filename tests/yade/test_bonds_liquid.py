@@ -250,6 +250,22 @@ ck.true(half1 == half2 and half1 != half3, "the dry pairs are the same for a see
 ck.true(all(not O.interactions[a, b].phys.keptDry for a, b in half3), "no kept-dry pair holds a bond")
 ck.close(e3.alpha * len(half3), 540 * 0.01, 1e-12, "dry pairs: the same liquid on fewer bonds", "Richefeu2008 eq. (13)")
 
+# 6b. A sharing between steps sees the pairs at a distance the collider lists, also before the first step: the
+# collider runs first (as after O.load, which keeps no potential pair). The lattice's 540 pairs, all 0.05 mm apart.
+O.reset()
+mat = material()
+for i in range(6):
+    for j in range(6):
+        for k in range(6):
+            O.bodies.append(sphere((i * 2.05e-3, j * 2.05e-3, k * 2.05e-3), 1e-3, material=mat))
+O.engines = engines(extra=[PendularBonds()])
+O.dt = 1e-6
+e = wetting.engine()
+e.share(540 * 0.01e-9)
+pairs = {(I.id1, I.id2) for I in O.interactions if I.isReal and I.phys.active}
+ck.true(len(pairs) == 540 and e.nShared == 540, "share() before the first step: the 540 pairs at a distance bonded (got %d)" % len(pairs))
+ck.close(e.alpha, 0.01, 1e-12, "share() before the first step: alpha", "Richefeu2008 eq. (13)-(14)")
+
 # 7. Bad input.
 ck.raises(ValueError, lambda: PendularBonds(protocol="gravity"), "protocol", "an unknown protocol")
 ck.raises(ValueError, lambda: PendularBonds(dryFraction=1.5), "dryFraction", "a dry fraction above 1")
