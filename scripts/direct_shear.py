@@ -29,8 +29,6 @@ ws = [float(x) for x in options["--w"].split(",")]
 sigmas = [float(x) for x in options["--sigma"].split(",")]
 os.makedirs(outdir, exist_ok=True)
 state = os.path.join(outdir, "settled_%s.yade.gz" % config)
-if not os.path.exists(state + ".json"):
-    ds.prepare(config, state)
 runs = []
 for w in ws:
     for sigma in sigmas:
@@ -39,6 +37,8 @@ for w in ws:
             with open(os.path.join(where, "summary.json")) as f:
                 runs.append(json.load(f))
             continue
+        if not os.path.exists(state + ".json"):
+            ds.prepare(config, state)
         runs.append(ds.run(config, w, sigma, where, protocol=options["--protocol"], dry_fraction=float(options["--dry"]),
                            speed=float(options["--speed"]), state=state))
 with open(os.path.join(outdir, "runs.csv"), "w", newline="") as f:
@@ -54,5 +54,6 @@ with open(os.path.join(outdir, "mohr_coulomb.csv"), "w", newline="") as f:
                                                [r["tau_se_Pa"] for r in mine])
         out.writerow([w, c, se_c, phi, se_phi])
         print("w = %g: c = %.1f +- %.1f Pa, phi = %.1f +- %.1f deg" % (w, c, se_c, phi, se_phi))
-os.remove(state)
-os.remove(state + ".json")
+for path in (state, state + ".json"):
+    if os.path.exists(path):
+        os.remove(path)
