@@ -33,15 +33,13 @@ PAPER = dict(D=0.025, n=8000, diameters=(0.8e-3, 0.9e-3, 1.0e-3, 1.1e-3, 1.2e-3,
 # A sample of 10 mm across (about 500 spheres), shortened by 1 mm: a check of the machinery, not a reproduction.
 CI = dict(PAPER, D=0.010, n=500, fill_height=0.016, settle_s=0.25, shortening=1e-3, records=50)
 CONFIGS = {"paper": PAPER, "ci": CI}
-GRAVITY = 9.81
+GRAVITY = glassbeads.GRAVITY
 
 
 def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="fused"):
     """The mould with its loose spheres (no liquid, no friction); returns the info dict of the scene."""
     from yade import O, geom
     from yade.utils import sphere, wall
-    from yade.wrapper import PendularBonds
-    from .scene import engines, stable_dt
     cfg = dict(CONFIGS[config])
     rng = random.Random(cfg["seed"] if seed is None else seed)
     O.reset()
@@ -50,18 +48,8 @@ def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="
     mould = O.bodies.append(geom.facetCylinder((0, 0, cfg["fill_height"]), R, 2 * cfg["fill_height"], segmentsNumber=48, wallMask=4, material=walls))
     bottom = O.bodies.append(wall(0, axis=2, sense=1, material=walls))
     spheres = [O.bodies.append(sphere(p, r, material=beads)) for p, r in glassbeads.fill(cfg, rng)]
-    bonds = PendularBonds(protocol=protocol, dryFraction=dry_fraction, seed=cfg["seed"], label="bonds")
-    O.engines = engines(gravity=(0, 0, -GRAVITY), loop=loop, extra=[bonds])  # the physical weights after settle_and_seal
-    # The collider lists every pair within a quarter of the largest diameter, longer than the debonding distance of
-    # the sharing at the water contents of the paper (PendularBonds refuses a shorter one).
-    [e for e in O.engines if e.label == "collider"][0].verletDist = max(cfg["diameters"]) / 4
-    O.dt = stable_dt(cfg["dt_safety"])
+    glassbeads.engines(cfg, protocol, dry_fraction, loop)  # full gravity: the physical weights after settle_and_seal
     return dict(config=config, cfg=cfg, mould=mould, bottom=bottom, top=None, spheres=spheres, protocol=protocol, dry_fraction=dry_fraction)
-
-
-def _ip2():
-    from yade import O
-    return [f for e in O.engines if hasattr(e, "physDispatcher") for f in e.physDispatcher.functors][0]
 
 
 def _top(info):
@@ -86,10 +74,7 @@ def settle_and_seal(info, log=print):
     cfg = info["cfg"]
     O.run(int(cfg["settle_s"] / O.dt), True)
     [e for e in O.engines if isinstance(e, NewtonIntegrator)][0].gravity = (0, 0, -GRAVITY / cfg["mass_scale"])
-    for m in O.materials:
-        if m.label in ("beads", "walls"):
-            m.frictionAngle = math.atan(cfg["mu"])
-    _ip2().updateContacts()
+    glassbeads.frictional(cfg)
     height = _top(info)
     walls = [m for m in O.materials if m.label == "walls"][0]
     info["top"] = O.bodies.append(wall(height, axis=2, sense=-1, material=walls))
@@ -142,7 +127,7 @@ def compress(info, outdir):
     z0 = top.state.pos[2]
     steps = int(cfg["shortening"] / cfg["speed"] / O.dt)
     every = max(1, steps // cfg["records"])
-    law = [f for e in O.engines if hasattr(e, "lawDispatcher") for f in e.lawDispatcher.functors][0]
+    law = glassbeads.law()
     rows = []
     for _ in range(cfg["records"]):
         O.run(every, True)

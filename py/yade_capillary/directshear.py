@@ -35,15 +35,13 @@ PAPER = dict(D=0.046, h_lower=0.015, h_upper=0.010, n=7307, diameters=(2e-3, 1.5
 # CI, not a reproduction.
 CI = dict(PAPER, D=0.016, n=884, inertial=1e-2, shear=2e-3, residual_from=1e-3, records=100)
 CONFIGS = {"paper": PAPER, "ci": CI}
-GRAVITY = 9.81
+GRAVITY = glassbeads.GRAVITY
 
 
 def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="fused"):
     """The cell with its loose spheres (no liquid, no friction); returns the info dict of the scene."""
     from yade import O, geom
     from yade.utils import sphere, wall
-    from yade.wrapper import PendularBonds
-    from .scene import engines, stable_dt
     cfg = dict(CONFIGS[config])
     rng = random.Random(cfg["seed"] if seed is None else seed)
     O.reset()
@@ -60,24 +58,9 @@ def build(config="ci", protocol="particles", dry_fraction=0.0, seed=None, loop="
                                                material=walls) + geom.facetCylinder((0, 0, cfg["h_lower"]), **rim))
     bottom = O.bodies.append(wall(0, axis=2, sense=1, material=walls))
     spheres = [O.bodies.append(sphere(p, r, material=beads)) for p, r in glassbeads.fill(cfg, rng)]
-    bonds = PendularBonds(protocol=protocol, dryFraction=dry_fraction, seed=cfg["seed"], label="bonds")
-    O.engines = engines(gravity=(0, 0, -GRAVITY), loop=loop, extra=[bonds])
-    # The collider lists every pair within a quarter of the largest diameter: longer than the debonding
-    # distance of the sharing up to w of a few percent (PendularBonds refuses a shorter one).
-    [e for e in O.engines if e.label == "collider"][0].verletDist = max(cfg["diameters"]) / 4
-    O.dt = stable_dt(cfg["dt_safety"])
+    glassbeads.engines(cfg, protocol, dry_fraction, loop)
     return dict(config=config, cfg=cfg, lower=lower, upper=upper, bottom=bottom, lid=None, spheres=spheres, protocol=protocol,
                 dry_fraction=dry_fraction)
-
-
-def _law():
-    from yade import O
-    return [f for e in O.engines if hasattr(e, "lawDispatcher") for f in e.lawDispatcher.functors][0]
-
-
-def _ip2():
-    from yade import O
-    return [f for e in O.engines if hasattr(e, "physDispatcher") for f in e.physDispatcher.functors][0]
 
 
 def _solid(info):
@@ -128,10 +111,7 @@ def consolidate(info, sigma, log=print):
     while O.time < t_end and solid_fraction(info) < cfg["phi"]:
         O.run(chunk, True)
     phi0 = solid_fraction(info)
-    for m in O.materials:
-        if m.label in ("beads", "walls"):
-            m.frictionAngle = math.atan(cfg["mu"])
-    n = _ip2().updateContacts()
+    n = glassbeads.frictional(cfg)
     # At rest with friction: the lid's contact stress, sampled every chunk, averages to its weight. A heavy lid
     # rings longer on the sample: the rest lasts at least consolidate_s / 3 and goes on (up to consolidate_s)
     # until the mean of the last half of the samples is within rest_tolerance of sigma.
@@ -194,7 +174,7 @@ def shear(info, outdir, v=None):
     O.bodies[info["lid"]].state.vel = (v, 0, O.bodies[info["lid"]].state.vel[2])
     steps = int(cfg["shear"] / v / O.dt)
     every = max(1, steps // cfg["records"])
-    law = _law()
+    law = glassbeads.law()
     rows, x0 = [], O.bodies[info["upper"][0]].state.pos[0]
     t0 = time.time()
     for k in range(cfg["records"]):

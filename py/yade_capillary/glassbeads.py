@@ -63,3 +63,35 @@ def materials(cfg):
     beads.wet = True
     walls = PendularMat(label="walls", **contact)
     return O.materials.append(beads), O.materials.append(walls)
+
+
+GRAVITY = 9.81
+
+
+def engines(cfg, protocol, dry_fraction, loop):
+    """The engines of a scenario with its PendularBonds (label bonds) under gravity; the collider lists every pair
+    within a quarter of the largest diameter, longer than the debonding distance of the sharing up to w of a few
+    percent (PendularBonds refuses a shorter one); the time step from the stiffness (dt_safety)."""
+    from yade import O
+    from yade.wrapper import PendularBonds
+    from .scene import engines as scene_engines, stable_dt
+    bonds = PendularBonds(protocol=protocol, dryFraction=dry_fraction, seed=cfg["seed"], label="bonds")
+    O.engines = scene_engines(gravity=(0, 0, -GRAVITY), loop=loop, extra=[bonds])
+    [e for e in O.engines if e.label == "collider"][0].verletDist = max(cfg["diameters"]) / 4
+    O.dt = stable_dt(cfg["dt_safety"])
+
+
+def law():
+    """The scene's Law2_ScGeom_PendularPhys_Bridge."""
+    from yade import O
+    return [f for e in O.engines if hasattr(e, "lawDispatcher") for f in e.lawDispatcher.functors][0]
+
+
+def frictional(cfg):
+    """Friction mu on the beads and walls and on every existing contact (Ip2.updateContacts); returns the number
+    of contacts updated."""
+    from yade import O
+    for m in O.materials:
+        if m.label in ("beads", "walls"):
+            m.frictionAngle = math.atan(cfg["mu"])
+    return [f for e in O.engines if hasattr(e, "physDispatcher") for f in e.physDispatcher.functors][0].updateContacts()
