@@ -2,8 +2,9 @@
 # strength (its peak) for each water content, protocol and fraction of dry pairs.
 #   build/yade-capillary -j2 -n -x scripts/compression.py OUTDIR [config] [--w 0.02,0.04,0.06]
 #              [--protocol particles[,update,lowest]] [--dry 0[,0.5]]
-# Writes OUTDIR/runs.csv (one line per test) and OUTDIR/w<w>_<protocol>_dry<dry>/compression.csv. config: ci (the
-# default, seconds) or paper. A test whose summary.json exists is read, not run again.
+# Writes OUTDIR/runs.csv (one line per test) and OUTDIR/w<w>_<protocol>_dry<dry>/compression.csv. A test whose
+# summary.json exists is read, not run again.
+import argparse
 import csv
 import json
 import os
@@ -11,28 +12,25 @@ import sys
 
 from yade_capillary import compression as cp
 
-args = sys.argv[1:]
-options = {"--w": "0.02,0.04,0.06", "--protocol": "particles", "--dry": "0"}
-rest = []
-while args:
-    a = args.pop(0)
-    if a in options:
-        options[a] = args.pop(0)
-    else:
-        rest.append(a)
-outdir = rest[0] if rest else "results/compression"
-config = rest[1] if len(rest) > 1 else "ci"
+floats = lambda s: [float(x) for x in s.split(",")]
+p = argparse.ArgumentParser(prog="compression.py", description="Richefeu 2008's simple compression series")
+p.add_argument("outdir")
+p.add_argument("config", nargs="?", default="ci", choices=sorted(cp.CONFIGS), help="ci (a minute) or paper")
+p.add_argument("--w", type=floats, default=[0.02, 0.04, 0.06], help="water contents [-], comma-separated")
+p.add_argument("--protocol", type=lambda s: s.split(","), default=["particles"], help="PendularBonds.protocol values, comma-separated")
+p.add_argument("--dry", type=floats, default=[0.0], help="fractions of the pairs kept dry [-], comma-separated")
+a = p.parse_args(sys.argv[1:])
 runs = []
-for w in [float(x) for x in options["--w"].split(",")]:
-    for protocol in options["--protocol"].split(","):
-        for dry in [float(x) for x in options["--dry"].split(",")]:
-            where = os.path.join(outdir, "w%g_%s_dry%g" % (w, protocol, dry))
+for w in a.w:
+    for protocol in a.protocol:
+        for dry in a.dry:
+            where = os.path.join(a.outdir, "w%g_%s_dry%g" % (w, protocol, dry))
             if os.path.exists(os.path.join(where, "summary.json")):
                 with open(os.path.join(where, "summary.json")) as f:
                     runs.append(json.load(f))
                 continue
-            runs.append(cp.run(config, w, where, protocol=protocol, dry_fraction=dry))
-with open(os.path.join(outdir, "runs.csv"), "w", newline="") as f:
+            runs.append(cp.run(a.config, w, where, protocol=protocol, dry_fraction=dry))
+with open(os.path.join(a.outdir, "runs.csv"), "w", newline="") as f:
     out = csv.DictWriter(f, fieldnames=list(runs[0]))
     out.writeheader()
     out.writerows(runs)

@@ -4,56 +4,20 @@
 #              [--sigma 300,600,900] [--protocol particles] [--dry 0] [--speed 1]
 # Writes OUTDIR/runs.csv (one line per test), OUTDIR/mohr_coulomb.csv (c, phi per water content, against the
 # normal stress on the shear plane) and OUTDIR/w<w>_sigma<sigma>/shear.csv (stresses against displacement).
-# config: ci (the default, minutes) or paper. --speed multiplies the shear speed of the configuration's inertial
-# number. A test whose summary.json exists is read, not run again, so an interrupted series goes on where it
-# stopped; the settled packing (OUTDIR/settled_<config>.yade.gz) is kept until the series is complete.
-import csv
-import json
-import os
+# A test whose summary.json exists is read, not run again, so an interrupted series goes on where it stopped.
+import argparse
 import sys
 
 from yade_capillary import directshear as ds
 
-args = sys.argv[1:]
-options = {"--w": "0,0.01", "--sigma": "300,900", "--protocol": "particles", "--dry": "0", "--speed": "1"}
-rest = []
-while args:
-    a = args.pop(0)
-    if a in options:
-        options[a] = args.pop(0)
-    else:
-        rest.append(a)
-outdir = rest[0] if rest else "results/direct_shear"
-config = rest[1] if len(rest) > 1 else "ci"
-ws = [float(x) for x in options["--w"].split(",")]
-sigmas = [float(x) for x in options["--sigma"].split(",")]
-os.makedirs(outdir, exist_ok=True)
-state = os.path.join(outdir, "settled_%s.yade.gz" % config)
-runs = []
-for w in ws:
-    for sigma in sigmas:
-        where = os.path.join(outdir, "w%g_sigma%g" % (w, sigma))
-        if os.path.exists(os.path.join(where, "summary.json")):
-            with open(os.path.join(where, "summary.json")) as f:
-                runs.append(json.load(f))
-            continue
-        if not os.path.exists(state + ".json"):
-            ds.prepare(config, state)
-        runs.append(ds.run(config, w, sigma, where, protocol=options["--protocol"], dry_fraction=float(options["--dry"]),
-                           speed=float(options["--speed"]), state=state))
-with open(os.path.join(outdir, "runs.csv"), "w", newline="") as f:
-    out = csv.DictWriter(f, fieldnames=list(runs[0]))
-    out.writeheader()
-    out.writerows(runs)
-with open(os.path.join(outdir, "mohr_coulomb.csv"), "w", newline="") as f:
-    out = csv.writer(f)
-    out.writerow(["w", "c_Pa", "c_se_Pa", "phi_deg", "phi_se_deg"])
-    for w in ws if len(sigmas) > 1 else ():  # a fit needs two normal stresses
-        mine = [r for r in runs if r["w"] == w]
-        c, se_c, phi, se_phi = ds.mohr_coulomb([r["sigma_plane_Pa"] for r in mine], [r["tau_residual_Pa"] for r in mine],
-                                               [r["tau_se_Pa"] for r in mine])
-        out.writerow([w, c, se_c, phi, se_phi])
-        print("w = %g: c = %.1f +- %.1f Pa, phi = %.1f +- %.1f deg" % (w, c, se_c, phi, se_phi))
-for path in (state, state + ".json"):
-    if os.path.exists(path):
-        os.remove(path)
+floats = lambda s: [float(x) for x in s.split(",")]
+p = argparse.ArgumentParser(prog="direct_shear.py", description="Richefeu 2008's direct shear series")
+p.add_argument("outdir")
+p.add_argument("config", nargs="?", default="ci", choices=sorted(ds.CONFIGS), help="ci (minutes) or paper")
+p.add_argument("--w", type=floats, default=[0.0, 0.01], help="water contents [-], comma-separated")
+p.add_argument("--sigma", type=floats, help="lid stresses [Pa]; the configuration's by default (ci: 10,300; paper: 300,600,900)")
+p.add_argument("--protocol", default="particles", help="PendularBonds.protocol")
+p.add_argument("--dry", type=float, default=0.0, help="fraction of the pairs kept dry [-]")
+p.add_argument("--speed", type=float, default=1.0, help="times the shear speed of the configuration's inertial number")
+a = p.parse_args(sys.argv[1:])
+ds.series(a.config, a.w, a.sigma or list(ds.CONFIGS[a.config]["sigmas"]), a.outdir, a.protocol, a.dry, a.speed)

@@ -126,11 +126,10 @@ def compress(info, outdir):
     top.state.vel = (0, 0, -cfg["speed"])
     z0 = top.state.pos[2]
     steps = int(cfg["shortening"] / cfg["speed"] / O.dt)
-    every = max(1, steps // cfg["records"])
     law = glassbeads.law()
     rows = []
-    for _ in range(cfg["records"]):
-        O.run(every, True)
+    for chunk in glassbeads.chunks(steps, cfg["records"]):
+        O.run(chunk, True)
         rows.append(dict(shortening_m=z0 - top.state.pos[2], axial_stress_Pa=O.forces.f(info["top"])[2] / A, sample_top_m=_top(info),
                          bond_coordination=bonds.coordination(),
                          liquid_m3=law.liquidTotals()["total"]))

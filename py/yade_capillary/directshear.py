@@ -30,10 +30,13 @@ from . import glassbeads
 # speed), walls as frictional as the beads; the shear speed from the inertial number (docs/richefeu.md).
 PAPER = dict(D=0.046, h_lower=0.015, h_upper=0.010, n=7307, diameters=(2e-3, 1.5e-3, 1e-3), fractions=(0.5, 0.3, 0.2), rho=2500.0,
              kn=2000.0, damping=0.3, mu=0.4, gamma=0.073, theta=0.0, phi=0.6, inertial=4e-3, shear=4e-3, residual_from=2e-3,
-             fill_height=0.042, settle_s=0.35, consolidate_s=0.15, rest_tolerance=0.02, dt_safety=0.2, records=200, seed=1)
-# Same particles in a cell of 16 mm (about 890 spheres), sheared faster and less far: a regression check of the
-# CI, not a reproduction.
-CI = dict(PAPER, D=0.016, n=884, inertial=1e-2, shear=2e-3, residual_from=1e-3, records=100)
+             fill_height=0.042, settle_s=0.35, consolidate_s=0.15, rest_tolerance=0.02, dt_safety=0.2, records=200, seed=1,
+             sigmas=(300.0, 600.0, 900.0))
+# The CI regression of c (tests/yade/test_direct_shear_ci.py): the same particles in a cell of 24 mm (as many
+# spheres per area as the paper's, 1989), sheared five times faster (I = 2e-2) over 3 mm. Its lid stresses of 10
+# and 300 Pa (about 80 and 370 Pa on the plane) put the lower one near the intercept, where c is least uncertain.
+# A cell of 16 mm (884 spheres) did not separate wet from dry: its walls carry most of the shear force.
+CI = dict(PAPER, D=0.024, n=1989, inertial=2e-2, shear=3e-3, residual_from=1e-3, records=100, sigmas=(10.0, 300.0))
 CONFIGS = {"paper": PAPER, "ci": CI}
 GRAVITY = glassbeads.GRAVITY
 
@@ -173,12 +176,11 @@ def shear(info, outdir, v=None):
         O.bodies[i].state.vel = (v, 0, 0)
     O.bodies[info["lid"]].state.vel = (v, 0, O.bodies[info["lid"]].state.vel[2])
     steps = int(cfg["shear"] / v / O.dt)
-    every = max(1, steps // cfg["records"])
     law = glassbeads.law()
     rows, x0 = [], O.bodies[info["upper"][0]].state.pos[0]
     t0 = time.time()
-    for k in range(cfg["records"]):
-        O.run(every, True)
+    for chunk in glassbeads.chunks(steps, cfg["records"]):
+        O.run(chunk, True)
         fx = sum(O.forces.f(i)[0] for i in upper)
         rows.append(dict(displacement_m=O.bodies[info["upper"][0]].state.pos[0] - x0, tau_Pa=-fx / A,
                          sigma_lid_Pa=O.forces.f(info["lid"])[2] / A, lid_z_m=O.bodies[info["lid"]].state.pos[2], **plane_stresses(info),
@@ -280,3 +282,80 @@ def mohr_coulomb(sigmas, taus, errors):
     scale = max(1.0, chi2 / (len(sigmas) - 2)) if len(sigmas) > 2 else 1.0
     se_c, se_slope = math.sqrt(Sxx / det * scale), math.sqrt(S / det * scale)
     return c, se_c, math.degrees(math.atan(slope)), math.degrees(se_slope / (1 + slope ** 2))
+
+
+def series(config, ws, sigmas, outdir, protocol="particles", dry_fraction=0.0, speed=1.0, seed=None, log=print):
+    """Every water content of ws at every lid stress of sigmas [Pa], from one packing: runs the tests whose
+    outdir/w<w>_sigma<sigma>/summary.json is missing (so an interrupted series goes on where it stopped), reads the
+    others; the settled packing (outdir/settled_<config>.yade.gz) is kept until the series is complete. Writes
+    outdir/runs.csv and, with two lid stresses or more, outdir/mohr_coulomb.csv (c and phi of each water content
+    fitted alone and with one phi for all, common_friction); returns the summaries and the fits of each alone."""
+    os.makedirs(outdir, exist_ok=True)
+    state = os.path.join(outdir, "settled_%s.yade.gz" % config)
+    runs = []
+    for w in ws:
+        for sigma in sigmas:
+            where = os.path.join(outdir, "w%g_sigma%g" % (w, sigma))
+            if os.path.exists(os.path.join(where, "summary.json")):
+                with open(os.path.join(where, "summary.json")) as f:
+                    runs.append(json.load(f))
+                continue
+            if not os.path.exists(state + ".json"):
+                prepare(config, state, seed=seed, log=log)
+            runs.append(run(config, w, sigma, where, protocol, dry_fraction, speed, state=state, log=log))
+    with open(os.path.join(outdir, "runs.csv"), "w", newline="") as f:
+        out = csv.DictWriter(f, fieldnames=list(runs[0]))
+        out.writeheader()
+        out.writerows(runs)
+    fitted = fits(runs) if len(set(sigmas)) > 1 else {}
+    if fitted:
+        both = common_friction(runs)
+        with open(os.path.join(outdir, "mohr_coulomb.csv"), "w", newline="") as f:
+            out = csv.writer(f)
+            out.writerow(["w", "c_Pa", "c_se_Pa", "phi_deg", "phi_se_deg", "c_one_phi_Pa", "c_one_phi_se_Pa", "one_phi_deg", "one_phi_se_deg"])
+            for w, fit in fitted.items():
+                out.writerow([w, fit["c_Pa"], fit["c_se_Pa"], fit["phi_deg"], fit["phi_se_deg"], both["c_Pa"][w], both["c_se_Pa"][w],
+                              both["phi_deg"], both["phi_se_deg"]])
+                log("w = %g: c = %.1f +- %.1f Pa, phi = %.1f +- %.1f deg; with one phi for all w: c = %.1f +- %.1f Pa"
+                    % (w, fit["c_Pa"], fit["c_se_Pa"], fit["phi_deg"], fit["phi_se_deg"], both["c_Pa"][w], both["c_se_Pa"][w]))
+        log("one phi for all w: %.1f +- %.1f deg" % (both["phi_deg"], both["phi_se_deg"]))
+    for path in (state, state + ".json"):
+        if os.path.exists(path):
+            os.remove(path)
+    return runs, fitted
+
+
+def fits(runs):
+    """The Mohr-Coulomb fit of each water content of runs (summaries of run) against the normal stress on the
+    shear plane: {w: dict(c_Pa, c_se_Pa, phi_deg, phi_se_deg)}."""
+    out = {}
+    for w in sorted(set(r["w"] for r in runs)):
+        mine = [r for r in runs if r["w"] == w]
+        c, se_c, phi, se_phi = mohr_coulomb([r["sigma_plane_Pa"] for r in mine], [r["tau_residual_Pa"] for r in mine], [r["tau_se_Pa"] for r in mine])
+        out[w] = dict(c_Pa=c, c_se_Pa=se_c, phi_deg=phi, phi_se_deg=se_phi)
+    return out
+
+
+def common_friction(runs):
+    """The Mohr-Coulomb fit of every water content of runs at once with one friction angle, tau = c_w + sigma tan(phi)
+    (Richefeu2008 section 3.2.2: phi does not depend on w), weighted by the residual stresses' errors (scaled up by
+    the scatter about the lines when it is larger). Returns dict(phi_deg, phi_se_deg, c_Pa={w: c}, c_se_Pa={w: se},
+    c_cov_Pa2={w: {w2: covariance}}); the difference of two cohesions has the variance
+    cov[a][a] + cov[b][b] - 2 cov[a][b]. Needs two normal stresses for one water content or more."""
+    import numpy as np
+    ws = sorted(set(r["w"] for r in runs))
+    X = np.array([[1.0 if r["w"] == w else 0.0 for w in ws] + [r["sigma_plane_Pa"]] for r in runs])
+    y = np.array([r["tau_residual_Pa"] for r in runs])
+    wt = np.array([1 / r["tau_se_Pa"] ** 2 for r in runs])
+    if np.linalg.matrix_rank(X) < X.shape[1]:
+        raise ValueError("common_friction: the runs %s need two different normal stresses for one water content or more"
+                         % [(r["w"], r["sigma_plane_Pa"]) for r in runs])
+    A = np.linalg.inv(X.T @ (wt[:, None] * X))
+    beta = A @ X.T @ (wt * y)
+    dof = len(runs) - X.shape[1]
+    chi2 = float(np.sum(wt * (y - X @ beta) ** 2))
+    cov = A * (max(1.0, chi2 / dof) if dof > 0 else 1.0)
+    slope, se_slope = beta[-1], math.sqrt(cov[-1, -1])
+    return dict(phi_deg=math.degrees(math.atan(slope)), phi_se_deg=math.degrees(se_slope / (1 + slope ** 2)),
+                c_Pa={w: float(beta[i]) for i, w in enumerate(ws)}, c_se_Pa={w: math.sqrt(cov[i, i]) for i, w in enumerate(ws)},
+                c_cov_Pa2={w: {w2: float(cov[i, j]) for j, w2 in enumerate(ws)} for i, w in enumerate(ws)})

@@ -95,3 +95,9 @@ def frictional(cfg):
         if m.label in ("beads", "walls"):
             m.frictionAngle = math.atan(cfg["mu"])
     return [f for e in O.engines if hasattr(e, "physDispatcher") for f in e.physDispatcher.functors][0].updateContacts()
+
+
+def chunks(steps, records):
+    """The step counts of `records` runs that together make `steps` (at least one each): a loading of a given
+    travel recorded `records` times ends at its travel, not short of it by the remainder."""
+    return [max(1, (k + 1) * steps // records - k * steps // records) for k in range(records)]

@@ -2,7 +2,7 @@
   python3 scripts/studies/direct_shear_plots.py OUTDIR [--sigma 300]
 writes OUTDIR/shear_curves.png (shear stress against displacement over the mean diameter, each water content at
 one normal stress), OUTDIR/cohesion.png (the yield loci of each water content, and c against w with its standard
-error) and OUTDIR/stress_drops.csv (per test, the falls of the shear stress between two records by more than DROP of
+error, each water content fitted alone and all with one friction angle) and OUTDIR/stress_drops.csv (per test, the falls of the shear stress between two records by more than DROP of
 its residual mean, within the residual window: the instabilities of Richefeu2008 Fig. 5). Reads OUTDIR/runs.csv,
 OUTDIR/mohr_coulomb.csv and OUTDIR/w<w>_sigma<sigma>/shear.csv."""
 import csv
@@ -69,7 +69,9 @@ def main(argv):
     left.set_ylabel("residual shear stress [Pa]")
     left.legend()
     right.errorbar([100 * float(f["w"]) for f in fits], [float(f["c_Pa"]) for f in fits], yerr=[float(f["c_se_Pa"]) for f in fits], fmt="o-",
-                   label="this cell")
+                   label="this cell, each w alone")
+    right.errorbar([100 * float(f["w"]) for f in fits], [float(f["c_one_phi_Pa"]) for f in fits], yerr=[float(f["c_one_phi_se_Pa"]) for f in fits],
+                   fmt="s--", label="this cell, one phi for all w (%.1f deg)" % float(fits[0]["one_phi_deg"]))
     right.axhline(120, ls="--", color="grey", label="Richefeu2008 simulations, c_m")
     right.set_xscale("symlog", linthresh=0.05)
     right.set_xlim(left=0)

@@ -13,7 +13,7 @@ from yade_capillary import bonds, directshear as ds
 from testing import Checker
 
 ck = Checker("test_direct_shear_setup")
-cfg = dict(ds.CONFIGS["ci"], shear=2e-4, records=20, settle_s=0.25)
+cfg = dict(ds.CONFIGS["ci"], D=0.016, n=884, shear=2e-4, records=20, settle_s=0.25)  # a smaller cell: the machinery only
 ds.CONFIGS["test"] = cfg
 info = ds.build("test")
 d = [2 * O.bodies[i].shape.radius for i in info["spheres"]]
@@ -35,7 +35,7 @@ ck.true(len(mu) > 0 and all(abs(m - cfg["mu"]) < 1e-12 for m in mu), "friction m
 total0 = law.liquidTotals()["total"]
 rows = ds.shear(info, "/tmp/test_direct_shear_setup")
 ck.close(info["v"], cfg["inertial"] * 10 * math.sqrt(300.0 / cfg["rho"]), 1e-12, "shear speed of the inertial number", "I = (v / 10 d) d sqrt(rho / sigma)")
-ck.close(rows[-1]["displacement_m"], cfg["shear"], 0.02, "the upper part moved by the shear distance", "v t")
+ck.close(rows[-1]["displacement_m"], cfg["shear"], 0.005, "the upper part moved by the shear distance (within one step, 0.2 %)", "v t")
 ck.close(law.liquidTotals()["total"], total0, 1e-12, "liquid conserved through the shear", "the liquid after the sharing")
 ck.true(all(math.isfinite(r["tau_Pa"]) for r in rows), "finite shear stress")
 ck.finish()
