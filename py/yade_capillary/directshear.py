@@ -138,23 +138,31 @@ def plane_stresses(info):
     of the paper's normal stress sigma = N/S + rho g h (Richefeu2008 section 3.1.1).
     tau_contacts, sigma_contacts: the force that the spheres below the plane exert on those above it through
     their contacts and bridges (capillary attraction included), against the shear direction and upwards, over
-    the area. Against the ring's force they tell what the cell's walls carry."""
+    the area. Against the ring's force they tell what the cell's walls carry.
+    capillary_stress: the mean stress of the capillary forces over the sample below the lid, sum of F_cap l over
+    the bonds (l the distance between the centres) over 3 V (the Love-Weber mean stress): the cohesive stress
+    that the bonds hold, which grows with their number and with the force each still carries at a distance."""
     from yade import O
     cfg = info["cfg"]
     A = math.pi * cfg["D"] ** 2 / 4
     z0 = cfg["h_lower"]
     above = {i: O.bodies[i].state.pos[2] > z0 for i in info["spheres"]}
     weight = sum(O.bodies[i].state.mass for i, up in above.items() if up) * GRAVITY
-    fx = fz = 0.0
+    fx = fz = fl = 0.0
     for I in O.interactions:
         a, b = above.get(I.id1), above.get(I.id2)
-        if a is None or b is None or a == b or not I.isReal:
+        if a is None or b is None or not I.isReal:
+            continue
+        if I.phys.Fcap > 0:
+            fl += I.phys.Fcap * (O.bodies[I.id2].state.pos - O.bodies[I.id1].state.pos).norm()
+        if a == b:
             continue
         f2 = I.phys.normalForce + I.phys.shearForce + I.phys.viscousShear  # on body 2 (YADE convention)
         sign = 1.0 if b else -1.0  # the force on the sphere above
         fx += sign * f2[0]
         fz += sign * f2[2]
-    return dict(weight_above_Pa=weight / A, tau_contacts_Pa=-fx / A, sigma_contacts_Pa=fz / A)
+    volume = A * (O.bodies[info["lid"]].state.pos[2] if info.get("lid") is not None else cfg["h_lower"] + cfg["h_upper"])
+    return dict(weight_above_Pa=weight / A, tau_contacts_Pa=-fx / A, sigma_contacts_Pa=fz / A, capillary_stress_Pa=fl / (3 * volume))
 
 
 def shear_speed(cfg, sigma):
@@ -257,7 +265,8 @@ def run(config, w, sigma, outdir, protocol="particles", dry_fraction=0.0, speed=
     tau_c, se_c = residual(rows, start, "tau_contacts_Pa")
     summary = dict(config=config, w=w, sigma_Pa=sigma, sigma_plane_Pa=sigma + above, weight_above_Pa=above, protocol=protocol,
                    dry_fraction=dry_fraction, tau_residual_Pa=tau, tau_se_Pa=se, tau_contacts_Pa=tau_c, tau_contacts_se_Pa=se_c,
-                   sigma_contacts_Pa=residual(rows, start, "sigma_contacts_Pa")[0], sigma_rest_Pa=info["sigma_rest_Pa"], rest_s=info["rest_s"],
+                   sigma_contacts_Pa=residual(rows, start, "sigma_contacts_Pa")[0], capillary_stress_start_Pa=rows[0]["capillary_stress_Pa"],
+                   capillary_stress_Pa=residual(rows, start, "capillary_stress_Pa")[0], sigma_rest_Pa=info["sigma_rest_Pa"], rest_s=info["rest_s"],
                    phi_consolidated=phi0, phi_end=rows[-1]["phi"], bond_coordination_wet=z0, bond_coordination_end=rows[-1]["bond_coordination"],
                    shear_speed_m_s=info["v"], inertial_number=info["v"] / 10 * math.sqrt(info["cfg"]["rho"] / sigma),
                    dt_s=O.dt, spheres=len(info["spheres"]), particle_steps=len(info["spheres"]) * (O.iter - iter0), wall_s=time.time() - t0)
@@ -304,7 +313,7 @@ def series(config, ws, sigmas, outdir, protocol="particles", dry_fraction=0.0, s
                 prepare(config, state, seed=seed, log=log)
             runs.append(run(config, w, sigma, where, protocol, dry_fraction, speed, state=state, log=log))
     with open(os.path.join(outdir, "runs.csv"), "w", newline="") as f:
-        out = csv.DictWriter(f, fieldnames=list(runs[0]))
+        out = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in runs for k in r)))  # summaries of older runs lack newer keys
         out.writeheader()
         out.writerows(runs)
     fitted = fits(runs) if len(set(sigmas)) > 1 else {}
