@@ -293,14 +293,15 @@ def mohr_coulomb(sigmas, taus, errors):
     return c, se_c, math.degrees(math.atan(slope)), math.degrees(se_slope / (1 + slope ** 2))
 
 
-def series(config, ws, sigmas, outdir, protocol="particles", dry_fraction=0.0, speed=1.0, seed=None, log=print):
+def series(config, ws, sigmas, outdir, protocol="particles", dry_fraction=0.0, speed=1.0, seed=None, packing=None, log=print):
     """Every water content of ws at every lid stress of sigmas [Pa], from one packing: runs the tests whose
     outdir/w<w>_sigma<sigma>/summary.json is missing (so an interrupted series goes on where it stopped), reads the
-    others; the settled packing (outdir/settled_<config>.yade.gz) is kept until the series is complete. Writes
+    others. The packing is `packing` (a state saved by prepare) or outdir/settled_<config>.yade.gz, prepared if
+    missing and kept, so that later runs (other protocols, dry fractions, speeds) can start from it. Writes
     outdir/runs.csv and, with two lid stresses or more, outdir/mohr_coulomb.csv (c and phi of each water content
     fitted alone and with one phi for all, common_friction); returns the summaries and the fits of each alone."""
     os.makedirs(outdir, exist_ok=True)
-    state = os.path.join(outdir, "settled_%s.yade.gz" % config)
+    state = packing or os.path.join(outdir, "settled_%s.yade.gz" % config)
     runs = []
     for w in ws:
         for sigma in sigmas:
@@ -328,9 +329,6 @@ def series(config, ws, sigmas, outdir, protocol="particles", dry_fraction=0.0, s
                 log("w = %g: c = %.1f +- %.1f Pa, phi = %.1f +- %.1f deg; with one phi for all w: c = %.1f +- %.1f Pa"
                     % (w, fit["c_Pa"], fit["c_se_Pa"], fit["phi_deg"], fit["phi_se_deg"], both["c_Pa"][w], both["c_se_Pa"][w]))
         log("one phi for all w: %.1f +- %.1f deg" % (both["phi_deg"], both["phi_se_deg"]))
-    for path in (state, state + ".json"):
-        if os.path.exists(path):
-            os.remove(path)
     return runs, fitted
 
 
