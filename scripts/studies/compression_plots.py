@@ -1,8 +1,11 @@
 """Plot of a simple compression series written by scripts/compression.py (Richefeu2008 Fig. 10):
   python3 scripts/studies/compression_plots.py OUTDIR
-writes OUTDIR/axial_stress.png, the axial stress against the shortening over the mean diameter for every test of
-OUTDIR/runs.csv (water content, protocol, fraction of dry pairs, bond coordination after wetting)."""
+writes OUTDIR/axial_stress.png, the axial stress against the shortening over the mean diameter for every test in
+OUTDIR (each w<w>_<protocol>_dry<dry>/summary.json: water content, protocol, fraction of dry pairs, bond
+coordination after wetting), whichever series wrote it."""
 import csv
+import glob
+import json
 import os
 import sys
 
@@ -16,8 +19,10 @@ MEAN_DIAMETER = 1.05e-3  # 10/20/20/20/20/10 % by number of 0.8 to 1.3 mm (yade_
 
 def main(argv):
     outdir = argv[0]
-    with open(os.path.join(outdir, "runs.csv")) as f:
-        runs = list(csv.DictReader(f))
+    runs = []
+    for path in sorted(glob.glob(os.path.join(outdir, "w*_dry*", "summary.json"))):
+        with open(path) as f:
+            runs.append(json.load(f))
     fig, ax = plt.subplots(figsize=(6, 4))
     for r in runs:
         where = os.path.join(outdir, "w%g_%s_dry%g" % (float(r["w"]), r["protocol"], float(r["dry_fraction"])))
