@@ -5,12 +5,11 @@
 # Writes OUTDIR/runs.csv (one line per test) and OUTDIR/w<w>_<protocol>_dry<dry>/compression.csv. A test whose
 # summary.json exists is read, not run again.
 import argparse
-import csv
 import json
 import os
 import sys
 
-from yade_capillary import compression as cp
+from yade_capillary import compression as cp, glassbeads
 
 floats = lambda s: [float(x) for x in s.split(",")]
 p = argparse.ArgumentParser(prog="compression.py", description="Richefeu 2008's simple compression series")
@@ -30,7 +29,4 @@ for w in a.w:
                     runs.append(json.load(f))
                 continue
             runs.append(cp.run(a.config, w, where, protocol=protocol, dry_fraction=dry))
-with open(os.path.join(a.outdir, "runs.csv"), "w", newline="") as f:
-    out = csv.DictWriter(f, fieldnames=list(runs[0]))
-    out.writeheader()
-    out.writerows(runs)
+glassbeads.write_csv(os.path.join(a.outdir, "runs.csv"), runs)

@@ -5,14 +5,13 @@
 # regression (tests/yade/test_direct_shear_ci.py) compares its own run (seed 1) with these values.
 # Run:  build/yade-capillary -j1 -n -x scripts/direct_shear_reference.py [nseeds] [workdir]   (about 7 min per seed)
 # A workdir that holds the runs of an earlier call is read, not run again.
-import json
 import os
 import sys
 import tempfile
 
-import numpy as np
-
 from yade_capillary import directshear as ds
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # yade does not put the script's folder on sys.path
+from studies import seedref  # noqa: E402
 
 nseeds = int(sys.argv[1]) if len(sys.argv) > 1 else 5
 work = sys.argv[2] if len(sys.argv) > 2 else tempfile.mkdtemp(prefix="direct_shear_ref_")
@@ -28,11 +27,7 @@ for seed in range(1, nseeds + 1):
     values.setdefault("common", {}).setdefault("phi_deg", []).append(both["phi_deg"])
     values["common"].setdefault("dc_Pa", []).append(both["c_Pa"][0.01] - both["c_Pa"][0.0])
     print("seed", seed, values)
-ref = {"command": "build/yade-capillary -j1 -n -x scripts/direct_shear_reference.py %d" % nseeds, "config": "ci",
-       "lid_stresses_Pa": list(cfg["sigmas"]), "seeds": list(range(1, nseeds + 1)),
-       "cases": {c: {k: {"mean": float(np.mean(v)), "std": float(np.std(v, ddof=1)), "values": v} for k, v in q.items()} for c, q in values.items()}}
-path = os.path.join(root, "tests", "data", "direct_shear_ci_reference.json")
-with open(path, "w") as f:
-    json.dump(ref, f, indent=1)
-print("wrote", path)
+seedref.write(os.path.join(root, "tests", "data", "direct_shear_ci_reference.json"),
+              "build/yade-capillary -j1 -n -x scripts/direct_shear_reference.py %d" % nseeds, values, config="ci",
+              lid_stresses_Pa=list(cfg["sigmas"]), seeds=list(range(1, nseeds + 1)))
 sys.exit(0)

@@ -3,14 +3,13 @@
 # and the torque on the rotating walls, and the command line. The CI regression (tests/yade/test_shear_cell_ci.py) compares its own
 # run (seed 1) with these values within 4 standard deviations.
 # Run:  build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py [nseeds]   (about 1 min per seed)
-import json
 import os
 import sys
 import tempfile
 
-import numpy as np
-
 from yade_capillary import cellanalysis, shearcell
+sys.path.insert(0, os.path.dirname(os.path.realpath(sys.argv[0])))  # yade does not put the script's folder on sys.path
+from studies import seedref  # noqa: E402
 
 nseeds = int(sys.argv[1]) if len(sys.argv) > 1 else 3
 root = os.path.dirname(os.path.dirname(os.path.realpath(sys.argv[0])))  # yade puts the script's path in sys.argv[0]
@@ -26,10 +25,7 @@ for case in shearcell.CASES:
         print(case, seed, s)
         for k, v in s.items():
             values.setdefault(case, {}).setdefault(k, []).append(v)
-ref = {"command": "build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py %d" % nseeds, "config": "ci", "seeds": list(range(1, nseeds + 1)),
-       "cases": {c: {k: {"mean": float(np.mean(v)), "std": float(np.std(v, ddof=1)), "values": v} for k, v in q.items()} for c, q in values.items()}}
-path = os.path.join(root, "tests", "data", "shear_cell_ci_reference.json")
-with open(path, "w") as f:
-    json.dump(ref, f, indent=1)
-print("wrote", path)
+seedref.write(os.path.join(root, "tests", "data", "shear_cell_ci_reference.json"),
+              "build/yade-capillary -j1 -n -x scripts/shear_cell_reference.py %d" % nseeds, values, config="ci",
+              seeds=list(range(1, nseeds + 1)))
 sys.exit(0)

@@ -10,7 +10,6 @@ constant speed; the axial stress is its force over the sample's cross-section, t
 Every parameter lives in CONFIGS (what the paper leaves open is chosen there and in docs/richefeu.md); scripts only
 choose names.
 """
-import csv
 import json
 import math
 import os
@@ -83,13 +82,13 @@ def settle_and_seal(info, log=print):
     for k in range(1, stages + 1):
         newton.gravity = (0, 0, -GRAVITY / cfg["mass_scale"] ** (k / stages))
         O.run(max(1, int(cfg["unload_s"] / stages / O.dt)), True)
-    info["rest_s"] = _rest(info)
+    rest = _rest(info)
     glassbeads.frictional(cfg)
     height = _top(info)
     walls = [m for m in O.materials if m.label == "walls"][0]
     info["top"] = O.bodies.append(wall(height, axis=2, sense=-1, material=walls))
     info["height_sealed_m"], info["phi_sealed"] = height, solid_fraction(info, height)
-    log("sealed: %.2f mm high, phi %.4f" % (1e3 * height, info["phi_sealed"]))
+    log("sealed: %.2f mm high, phi %.4f (after %.2f s at rest under the physical weights)" % (1e3 * height, info["phi_sealed"], rest))
 
 
 def wet(info, w):
@@ -153,10 +152,7 @@ def compress(info, outdir):
                          bond_coordination=bonds.coordination(),
                          liquid_m3=law.liquidTotals()["total"]))
     os.makedirs(outdir, exist_ok=True)
-    with open(os.path.join(outdir, "compression.csv"), "w", newline="") as f:
-        out = csv.DictWriter(f, fieldnames=list(rows[0]))
-        out.writeheader()
-        out.writerows(rows)
+    glassbeads.write_csv(os.path.join(outdir, "compression.csv"), rows)
     return rows
 
 

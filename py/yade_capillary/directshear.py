@@ -161,7 +161,7 @@ def plane_stresses(info):
         sign = 1.0 if b else -1.0  # the force on the sphere above
         fx += sign * f2[0]
         fz += sign * f2[2]
-    volume = A * (O.bodies[info["lid"]].state.pos[2] if info.get("lid") is not None else cfg["h_lower"] + cfg["h_upper"])
+    volume = A * O.bodies[info["lid"]].state.pos[2]
     return dict(weight_above_Pa=weight / A, tau_contacts_Pa=-fx / A, sigma_contacts_Pa=fz / A, capillary_stress_Pa=fl / (3 * volume))
 
 
@@ -196,10 +196,7 @@ def shear(info, outdir, v=None):
     info["wall_s"] = time.time() - t0
     info["steps"] = steps
     os.makedirs(outdir, exist_ok=True)
-    with open(os.path.join(outdir, "shear.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    glassbeads.write_csv(os.path.join(outdir, "shear.csv"), rows)
     return rows
 
 
@@ -313,10 +310,7 @@ def series(config, ws, sigmas, outdir, protocol="particles", dry_fraction=0.0, s
             if not os.path.exists(state + ".json"):
                 prepare(config, state, seed=seed, log=log)
             runs.append(run(config, w, sigma, where, protocol, dry_fraction, speed, state=state, log=log))
-    with open(os.path.join(outdir, "runs.csv"), "w", newline="") as f:
-        out = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in runs for k in r)))  # summaries of older runs lack newer keys
-        out.writeheader()
-        out.writerows(runs)
+    glassbeads.write_csv(os.path.join(outdir, "runs.csv"), runs)
     fitted = fits(runs) if len(set(sigmas)) > 1 else {}
     if fitted:
         both = common_friction(runs)

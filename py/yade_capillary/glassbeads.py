@@ -101,3 +101,13 @@ def chunks(steps, records):
     """The step counts of `records` runs that together make `steps` (at least one each): a loading of a given
     travel recorded `records` times ends at its travel, not short of it by the remainder."""
     return [max(1, (k + 1) * steps // records - k * steps // records) for k in range(records)]
+
+
+def write_csv(path, rows):
+    """Rows (dicts) to a CSV file with a header of every key in order of appearance: the summaries of older runs,
+    read back into a series, lack the keys added since."""
+    import csv
+    with open(path, "w", newline="") as f:
+        out = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in rows for k in r)))
+        out.writeheader()
+        out.writerows(rows)
